@@ -1,0 +1,33 @@
+#pragma once
+// The matcher's view of an image: RGB as floats (integers 0..255, 4 floats per pixel)
+// and the grey-value gradient (2 floats per pixel), laid out as the kernels' buffers.
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace flexsight {
+
+struct ViewImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> color;     // r, g, b, 0 per pixel
+  std::vector<float> gradient;  // gx, gy per pixel
+  int pixels() const { return width * height; }
+};
+
+// From CV_8UC3 (RGB), gradient included.
+ViewImage make_view_image(const cv::Mat& rgb8);
+
+// Coarser level: 2x2 box average with rounding (size rounds up), gradient included.
+ViewImage downsample(const ViewImage& fine);
+
+// Recomputes `image.gradient` from `image.color`.
+void compute_gradient(ViewImage& image);
+
+// Number of pyramid levels so that the coarsest is at most `coarsest_width` wide
+// (at least 1; every level keeps at least 8 pixels in each direction).
+int pyramid_level_count(int width, int height, int coarsest_width);
+
+// Level 0 is the input; level i+1 is downsample(level i).
+std::vector<ViewImage> build_pyramid(const cv::Mat& rgb8, int levels);
+
+}  // namespace flexsight

@@ -1,0 +1,81 @@
+#pragma once
+// The PatchMatch Stereo stages of one pyramid level, scalar C++, one function per
+// kernel of kernels/. Every stage writes only the pixels it owns (one view, and for
+// the checkerboard stages one colour) and reads nothing another pixel of the same call
+// writes, so the result is the same for any number of threads.
+#include <cstdint>
+#include <vector>
+
+#include "fallback/image_pyramid.h"
+#include "kernels/pms_math.h"
+
+namespace flexsight {
+
+// Planes (a, b, c, unused) and the matching cost of each pixel's plane, for one view.
+struct PlaneField {
+  int width = 0;
+  int height = 0;
+  std::vector<float> planes;
+  std::vector<float> cost;
+  void resize(int w, int h);
+  int pixels() const { return width * height; }
+};
+
+// What every stage of one level reads besides the planes.
+struct LevelInputs {
+  const ViewImage* views[2] = {nullptr, nullptr};  // PMS_VIEW_LEFT, PMS_VIEW_RIGHT
+  const float* weights = nullptr;                  // support weight table
+  PmsCostParams cost{};
+  int ndisp = 0;                // disparity range of this level: [0, ndisp - 1]
+  std::uint32_t seed = 0;
+  int threads = 1;
+  float max_disparity() const { return static_cast<float>(ndisp - 1); }
+};
+
+// Random-search settings of one level.
+struct SearchSchedule {
+  float initial_range = 0;   // disparity range of the first trial
+  float normal_range = 0;    // normal range of the first trial
+  float min_range = 0;       // trials continue while the range is at least this
+  float confident_threshold = 2;  // confidence at or above which a pixel is confident
+  float confident_max_range = 0;  // confident pixels skip trials with a larger range
+};
+
+// Random planes for every pixel of `view`, then their costs.
+void init_random_planes(const LevelInputs& in, int view, std::uint32_t iteration,
+                        PlaneField& field);
+
+// Costs of the planes already in `field` (after carrying them from a coarser level).
+void evaluate_costs(const LevelInputs& in, int view, PlaneField& field);
+
+// Pixels of `colour` ((x + y) % 2) try the planes of their PMS_SPATIAL_CANDIDATES
+// neighbours of the other colour.
+void propagate_spatial(const LevelInputs& in, int view, int colour, PlaneField& field);
+
+// Pixels of `colour` try the plane of the pixel they match in the other view.
+void propagate_view(const LevelInputs& in, int view, int colour, const PlaneField& other,
+                    PlaneField& field);
+
+// Pixels of `colour` try random perturbations of their plane with halving ranges.
+// `confidence` (may be null) is per pixel of this level.
+void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t iteration,
+                   const SearchSchedule& schedule, const std::vector<float>* confidence,
+                   PlaneField& field);
+
+// Planes of the next finer level: pixel (x, y) takes coarse pixel (x / 2, y / 2).
+// `fine` must already have its size; costs are left for evaluate_costs.
+void carry_planes_to_finer(const PlaneField& coarse, PlaneField& fine);
+
+// d = a x + b y + c at every pixel.
+std::vector<float> plane_disparities(const PlaneField& field, int threads);
+
+// C(p) = 1 / (1 + |d(p) - d_other(p')|) for every pixel of `view`.
+std::vector<float> lr_confidence(const std::vector<float>& disparity,
+                                 const std::vector<float>& other_disparity, int width,
+                                 int height, int view, int threads);
+
+// Confidence of the next finer level: pixel (x, y) takes coarse pixel (x / 2, y / 2).
+std::vector<float> upsample_nearest(const std::vector<float>& coarse, int coarse_width,
+                                    int coarse_height, int fine_width, int fine_height);
+
+}  // namespace flexsight

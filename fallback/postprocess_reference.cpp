@@ -1,0 +1,68 @@
+#include "fallback/postprocess_reference.h"
+
+#include <algorithm>
+
+#include "kernels/postprocess_math.h"
+
+namespace flexsight {
+
+std::vector<std::uint8_t> left_right_check(const std::vector<float>& left_disparity,
+                                           const std::vector<float>& right_disparity, int width,
+                                           int height, float tolerance, int threads) {
+  std::vector<std::uint8_t> consistent(left_disparity.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      consistent[y * width + x] = static_cast<std::uint8_t>(pms_lr_consistent(
+          left_disparity.data(), right_disparity.data(), width, x, y, -1.0f, tolerance));
+    }
+  }
+  return consistent;
+}
+
+std::vector<float> fill_inconsistent(const std::vector<float>& planes,
+                                     const std::vector<std::uint8_t>& consistent, int width,
+                                     int height, int threads) {
+  std::vector<float> filled(planes);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      int index = y * width + x;
+      if (consistent[index]) continue;
+      pms_fill_pixel(planes.data(), consistent.data(), width, x, y, &filled[4 * index]);
+    }
+  }
+  return filled;
+}
+
+std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
+                                          const std::vector<std::uint8_t>& consistent,
+                                          const ViewImage& image, const float* weights,
+                                          int radius, int step, int threads) {
+  const int width = image.width;
+  const int height = image.height;
+  std::vector<float> filtered(disparity);
+  const int side = 2 * (radius / step) + 1;  // samples per window row
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<float> values(static_cast<size_t>(side) * side);
+    std::vector<float> sample_weights(values.size());
+    std::vector<float> sorted(values.size());
+#pragma omp for schedule(dynamic, 2)
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        int index = y * width + x;
+        if (consistent[index]) continue;
+        int n = pms_gather_median_samples(disparity.data(), image.color.data(), weights, width,
+                                          height, x, y, radius, step, values.data(),
+                                          sample_weights.data());
+        std::copy(values.begin(), values.begin() + n, sorted.begin());
+        std::sort(sorted.begin(), sorted.begin() + n);
+        filtered[index] = pms_weighted_median(values.data(), sample_weights.data(), sorted.data(), n);
+      }
+    }
+  }
+  return filtered;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,31 @@
+#pragma once
+// Post-processing of the finest level (Bleyer et al. 2011, Sec. 3.3), scalar C++, one
+// function per kernel: left/right check, filling of inconsistent pixels with the
+// background plane, and a weighted median over the filled pixels only.
+#include <cstdint>
+#include <vector>
+
+#include "fallback/image_pyramid.h"
+
+namespace flexsight {
+
+// 1 where the left disparity and the right disparity it points at agree.
+std::vector<std::uint8_t> left_right_check(const std::vector<float>& left_disparity,
+                                           const std::vector<float>& right_disparity, int width,
+                                           int height, float tolerance, int threads);
+
+// Planes where inconsistent pixels took the lower (background) plane of the nearest
+// consistent pixels on their row; consistent pixels keep theirs.
+std::vector<float> fill_inconsistent(const std::vector<float>& planes,
+                                     const std::vector<std::uint8_t>& consistent, int width,
+                                     int height, int threads);
+
+// For every inconsistent pixel, the weighted median of the disparities in a window
+// (radius, step), weights from `weights` indexed by the colour difference to the
+// centre; consistent pixels are copied.
+std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
+                                          const std::vector<std::uint8_t>& consistent,
+                                          const ViewImage& image, const float* weights,
+                                          int radius, int step, int threads);
+
+}  // namespace flexsight

@@ -1,0 +1,51 @@
+#include "fallback/stereo_params.h"
+
+#include <cmath>
+#include <string>
+
+#include "host/io/input_error.h"
+
+namespace flexsight {
+namespace {
+
+void require(bool ok, const char* name, const std::string& problem) {
+  if (!ok) throw InputError(std::string("parameter --") + name, problem);
+}
+
+}  // namespace
+
+void StereoParams::check() const {
+  require(ndisp > 0, "ndisp", "must be positive, got " + std::to_string(ndisp));
+  require(window >= 1 && window % 2 == 1 && window <= 101, "window",
+          "must be odd and in 1..101, got " + std::to_string(window));
+  require(window_step >= 1 && window_step <= window, "window-step",
+          "must be in 1..window, got " + std::to_string(window_step));
+  require(std::isfinite(alpha) && alpha >= 0 && alpha <= 1, "alpha", "must be in [0, 1]");
+  require(std::isfinite(tau_color) && tau_color > 0, "tau-color", "must be positive");
+  require(std::isfinite(tau_gradient) && tau_gradient > 0, "tau-gradient", "must be positive");
+  require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
+  require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
+  require(iterations_fine >= 0 && iterations_fine <= 100, "iterations-fine",
+          "must be in 0..100");
+  require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
+          "must be positive");
+  require(std::isfinite(confident_threshold) && confident_threshold >= 0, "confident-threshold",
+          "must be >= 0 (above 1 disables the confidence rule)");
+  require(std::isfinite(confident_max_range) && confident_max_range >= 0, "confident-max-range",
+          "must be >= 0");
+  require(std::isfinite(max_normal_delta) && max_normal_delta >= 0 && max_normal_delta <= 2,
+          "max-normal-delta", "must be in [0, 2]");
+  require(coarsest_width >= 8, "coarsest-width", "must be at least 8");
+  require(pyramid_factor == 2, "pyramid-factor", "only 2 is supported (exact plane carrying)");
+  require(std::isfinite(lr_tolerance) && lr_tolerance >= 0, "lr-tolerance", "must be >= 0");
+  require(median_window >= 1 && median_window % 2 == 1 && median_window <= 101, "median-window",
+          "must be odd and in 1..101");
+  require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
+  require(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024 (0 = all cores)");
+}
+
+const char* method_name(StereoMethod method) {
+  return method == StereoMethod::PPMS ? "ppms" : "pms";
+}
+
+}  // namespace flexsight

@@ -1,0 +1,62 @@
+#pragma once
+// Every parameter of the PatchMatch Stereo matcher, with its default and why.
+// The CLI exposes each field as --kebab-case-name; check() rejects impossible values.
+#include <cstdint>
+#include <string>
+
+namespace flexsight {
+
+enum class StereoMethod { PPMS, PMS };
+
+struct StereoParams {
+  // Pyramidal PatchMatch (default) or flat PatchMatch on the full resolution only.
+  StereoMethod method = StereoMethod::PPMS;
+  // Disparity search range: disparities lie in [0, ndisp - 1] at the finest level.
+  int ndisp = 64;
+  // Side of the square support window in pixels (odd).
+  int window = 35;
+  // Only every step-th row and column of the window is summed; 2 keeps accuracy and
+  // divides the cost of a matching evaluation by four.
+  int window_step = 2;
+  // Weight of the gradient term against the colour term in the matching cost.
+  float alpha = 0.9f;
+  // Truncation of the colour (L1 over RGB) and gradient dissimilarities.
+  float tau_color = 10.0f;
+  float tau_gradient = 2.0f;
+  // Adaptive support weight exp(-|I_p - I_q|_1 / gamma).
+  float gamma = 10.0f;
+  // PatchMatch iterations (each: both views, both checkerboard colours) per level.
+  int iterations = 3;
+  // Iterations on levels below the coarsest in PPMS, which start from a good guess.
+  int iterations_fine = 2;
+  // Random search: trial k perturbs the disparity by up to (ndisp_level / 2) / 2^k;
+  // trials continue while that range is at least min_search_range pixels.
+  float min_search_range = 0.25f;
+  // PPMS: where the coarser level's confidence C = 1/(1+|dL-dR|) reaches
+  // confident_threshold, trials with a range above confident_max_range are skipped,
+  // since the carried plane is already within a pixel or two of the answer.
+  float confident_threshold = 0.5f;
+  float confident_max_range = 2.0f;
+  // Largest normal perturbation per component at the first trial (then halved).
+  float max_normal_delta = 1.0f;
+  // PPMS: the coarsest level is the first whose width is at most this.
+  int coarsest_width = 128;
+  // Downsampling factor between pyramid levels (2 only, for exact plane carrying).
+  int pyramid_factor = 2;
+  // Left/right check tolerance in pixels.
+  float lr_tolerance = 1.0f;
+  // Weighted median filter window (odd) and colour bandwidth for filled pixels.
+  int median_window = 35;
+  float median_gamma = 10.0f;
+  // Random generator key: same seed, same bytes.
+  std::uint32_t seed = 1;
+  // Worker threads for the reference path (0 = all cores). Never changes the result.
+  int threads = 0;
+
+  // Throws InputError (subject "parameter <name>") for an impossible value.
+  void check() const;
+};
+
+const char* method_name(StereoMethod method);
+
+}  // namespace flexsight

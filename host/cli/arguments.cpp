@@ -1,0 +1,153 @@
+#include "host/cli/arguments.h"
+
+#include <functional>
+#include <sstream>
+
+#include "host/io/input_error.h"
+
+namespace flexsight {
+namespace {
+
+struct ParamOption {
+  const char* name;
+  const char* help;
+  std::function<void(StereoParams&, const std::string&)> set;
+};
+
+std::string option_subject(const std::string& name) { return "option --" + name; }
+
+long parse_integer(const std::string& name, const std::string& text) {
+  try {
+    size_t used = 0;
+    long value = std::stol(text, &used);
+    if (used == text.size()) return value;
+  } catch (const std::exception&) {
+  }
+  throw InputError(option_subject(name), "expected an integer, got '" + text + "'");
+}
+
+float parse_float(const std::string& name, const std::string& text) {
+  try {
+    size_t used = 0;
+    float value = std::stof(text, &used);
+    if (used == text.size()) return value;
+  } catch (const std::exception&) {
+  }
+  throw InputError(option_subject(name), "expected a number, got '" + text + "'");
+}
+
+template <typename Field>
+ParamOption integer_option(const char* name, const char* help, Field StereoParams::*field) {
+  return {name, help, [name, field](StereoParams& p, const std::string& v) {
+            p.*field = static_cast<Field>(parse_integer(name, v));
+          }};
+}
+
+ParamOption float_option(const char* name, const char* help, float StereoParams::*field) {
+  return {name, help,
+          [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); }};
+}
+
+const std::vector<ParamOption>& param_options() {
+  static const std::vector<ParamOption> options = {
+      {"method", "ppms (pyramidal, default) or pms (flat)",
+       [](StereoParams& p, const std::string& v) {
+         if (v == "ppms") {
+           p.method = StereoMethod::PPMS;
+         } else if (v == "pms") {
+           p.method = StereoMethod::PMS;
+         } else {
+           throw InputError(option_subject("method"), "expected ppms or pms, got '" + v + "'");
+         }
+       }},
+      integer_option("ndisp", "disparity range [0, ndisp - 1]", &StereoParams::ndisp),
+      integer_option("window", "support window side (odd)", &StereoParams::window),
+      integer_option("window-step", "sample every n-th window row/column", &StereoParams::window_step),
+      float_option("alpha", "weight of the gradient term", &StereoParams::alpha),
+      float_option("tau-color", "colour truncation", &StereoParams::tau_color),
+      float_option("tau-gradient", "gradient truncation", &StereoParams::tau_gradient),
+      float_option("gamma", "support weight bandwidth", &StereoParams::gamma),
+      integer_option("iterations", "iterations on the coarsest (or only) level", &StereoParams::iterations),
+      integer_option("iterations-fine", "iterations on finer PPMS levels", &StereoParams::iterations_fine),
+      float_option("min-search-range", "smallest random-search range (px)", &StereoParams::min_search_range),
+      float_option("confident-threshold", "confidence from which search is reduced",
+                   &StereoParams::confident_threshold),
+      float_option("confident-max-range", "largest search range for confident pixels (px)",
+                   &StereoParams::confident_max_range),
+      float_option("max-normal-delta", "normal perturbation of the first trial",
+                   &StereoParams::max_normal_delta),
+      integer_option("coarsest-width", "PPMS: widest allowed coarsest level", &StereoParams::coarsest_width),
+      integer_option("pyramid-factor", "PPMS: downsampling factor (2)", &StereoParams::pyramid_factor),
+      float_option("lr-tolerance", "left/right check tolerance (px)", &StereoParams::lr_tolerance),
+      integer_option("median-window", "weighted median window (odd)", &StereoParams::median_window),
+      float_option("median-gamma", "weighted median colour bandwidth", &StereoParams::median_gamma),
+      {"seed", "random generator seed",
+       [](StereoParams& p, const std::string& v) {
+         long value = parse_integer("seed", v);
+         if (value < 0 || value > 0xffffffffL) {
+           throw InputError(option_subject("seed"), "must be in 0..4294967295");
+         }
+         p.seed = static_cast<std::uint32_t>(value);
+       }},
+      integer_option("threads", "reference-path threads (0 = all cores)", &StereoParams::threads),
+  };
+  return options;
+}
+
+}  // namespace
+
+void consume_stereo_params(std::vector<std::string>& args, StereoParams& params) {
+  std::vector<std::string> rest;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const ParamOption* match = nullptr;
+    for (const ParamOption& option : param_options()) {
+      if (args[i] == std::string("--") + option.name) match = &option;
+    }
+    if (!match) {
+      rest.push_back(args[i]);
+      continue;
+    }
+    if (i + 1 >= args.size()) throw InputError(option_subject(match->name), "needs a value");
+    match->set(params, args[++i]);
+  }
+  args = rest;
+}
+
+std::string take_option(std::vector<std::string>& args, const std::string& name) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != name) continue;
+    if (i + 1 >= args.size()) throw InputError("option " + name, "needs a value");
+    std::string value = args[i + 1];
+    args.erase(args.begin() + i, args.begin() + i + 2);
+    return value;
+  }
+  return "";
+}
+
+bool take_flag(std::vector<std::string>& args, const std::string& name) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == name) {
+      args.erase(args.begin() + i);
+      return true;
+    }
+  }
+  return false;
+}
+
+void reject_unknown_options(const std::vector<std::string>& args) {
+  for (const std::string& arg : args) {
+    if (arg.size() > 1 && arg[0] == '-') throw InputError("option " + arg, "unknown option");
+  }
+}
+
+std::string stereo_params_help() {
+  std::ostringstream out;
+  for (const ParamOption& option : param_options()) {
+    out << "  --" << option.name << " VALUE";
+    for (size_t pad = std::string(option.name).size(); pad < 22; ++pad) out << ' ';
+    out << option.help << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace flexsight

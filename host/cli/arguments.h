@@ -1,0 +1,28 @@
+#pragma once
+// Command-line parsing shared by the subcommands.
+#include <string>
+#include <vector>
+
+#include "fallback/stereo_params.h"
+
+namespace flexsight {
+
+// Walks `args`; for each "--name value" naming a StereoParams field (kebab-case, e.g.
+// --window-step, --tau-color, --method, --seed, --threads, --ndisp) sets that field and
+// removes both tokens. Leaves all other tokens in place, in order. Throws InputError
+// ("option --x: ...") for a missing or malformed value.
+void consume_stereo_params(std::vector<std::string>& args, StereoParams& params);
+
+// Removes "--name value" from args and returns value, or "" if absent.
+std::string take_option(std::vector<std::string>& args, const std::string& name);
+
+// Removes "--name" from args and returns whether it was there.
+bool take_flag(std::vector<std::string>& args, const std::string& name);
+
+// Throws InputError ("option --x: unknown option") if any token starts with "--".
+void reject_unknown_options(const std::vector<std::string>& args);
+
+// One line per StereoParams option, for --help.
+std::string stereo_params_help();
+
+}  // namespace flexsight

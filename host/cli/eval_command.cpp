@@ -1,0 +1,264 @@
+// flexsight eval: scores the matcher (or results computed elsewhere) on a benchmark
+// folder and writes pictures plus a Markdown and a JSON report.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "host/cli/arguments.h"
+#include "host/cli/commands.h"
+#include "host/eval/colorize.h"
+#include "host/eval/dataset.h"
+#include "host/eval/metrics.h"
+#include "host/eval/report.h"
+#include "host/io/atomic_file.h"
+#include "host/io/image_io.h"
+#include "host/io/input_error.h"
+#include "host/io/pfm.h"
+#include "host/stereo_pipeline.h"
+
+namespace flexsight {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr float kErrorMapThreshold = 2.0f;
+
+const char* const kConventions =
+    "Errors at the ground truth's resolution; 'all' = every pixel with ground truth, "
+    "'nonocc' = mask 255; pixels without a result count as bad; average = unweighted mean "
+    "over scenes.";
+
+struct EvalOptions {
+  std::string dataset_root;
+  std::string results_dir;  // "" = run the matcher
+  std::string out_dir = "eval_out";
+  std::vector<std::string> scene_names;  // empty = every scene
+  float max_disp_color = 0;              // 0 = each scene's ndisp
+  StereoParams params;
+};
+
+void print_help() {
+  std::cout << "usage: flexsight eval DATASET_ROOT [options] [stereo params]\n"
+               "  DATASET_ROOT           MiddEval3, Middlebury v2 or KITTI training folder, or one scene\n"
+               "  --results DIR          score DIR/<scene>.pfm or DIR/<scene>/disp0*.pfm instead of\n"
+               "                         running the matcher\n"
+               "  --out DIR              output folder (default eval_out)\n"
+               "  --scenes A,B,C         only these scenes\n"
+               "  --max-disp-color N     disparity shown as the top colour (default: the scene's ndisp)\n"
+               "The disparity range (ndisp) comes from each scene; --ndisp is rejected.\n"
+               "Stereo params:\n"
+            << stereo_params_help();
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    const auto first = item.find_first_not_of(" \t");
+    const auto last = item.find_last_not_of(" \t");
+    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
+  }
+  return items;
+}
+
+float parse_positive(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const float value = std::stof(text, &used);
+    if (used == text.size() && std::isfinite(value) && value > 0) return value;
+  } catch (const std::exception&) {
+    // reported below, with the option's name
+  }
+  throw InputError("option " + option, "expected a positive number, got '" + text + "'");
+}
+
+EvalOptions parse_options(std::vector<std::string> args) {
+  EvalOptions options;
+  // Each scene brings its own disparity range; a global one would silently cut
+  // scenes short or waste time, so it is an error rather than ignored.
+  if (std::find(args.begin(), args.end(), "--ndisp") != args.end()) {
+    throw InputError("option --ndisp", "eval takes ndisp from each scene; remove the option");
+  }
+  consume_stereo_params(args, options.params);
+  options.results_dir = take_option(args, "--results");
+  const std::string out = take_option(args, "--out");
+  if (!out.empty()) options.out_dir = out;
+  const std::string scenes = take_option(args, "--scenes");
+  if (!scenes.empty()) options.scene_names = split_list(scenes);
+  const std::string max_disp = take_option(args, "--max-disp-color");
+  if (!max_disp.empty()) options.max_disp_color = parse_positive("--max-disp-color", max_disp);
+  reject_unknown_options(args);
+  if (args.size() != 1) {
+    throw InputError("DATASET_ROOT", args.empty() ? "missing (see flexsight eval --help)"
+                                                  : "expected one folder, got " +
+                                                        std::to_string(args.size()) + " arguments");
+  }
+  options.dataset_root = args.front();
+  return options;
+}
+
+// Keeps the scenes named by --scenes, in dataset order; an unknown name is an error so
+// a typo never shrinks a benchmark silently.
+std::vector<Scene> select_scenes(std::vector<Scene> scenes, const std::vector<std::string>& names) {
+  if (names.empty()) return scenes;
+  std::set<std::string> known;
+  for (const Scene& scene : scenes) known.insert(scene.name);
+  for (const std::string& name : names) {
+    if (known.count(name) == 0) {
+      std::string available;
+      for (const std::string& k : known) available += (available.empty() ? "" : ", ") + k;
+      throw InputError("option --scenes", "unknown scene '" + name + "' (available: " + available + ")");
+    }
+  }
+  const std::set<std::string> wanted(names.begin(), names.end());
+  scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
+                              [&](const Scene& scene) { return wanted.count(scene.name) == 0; }),
+               scenes.end());
+  return scenes;
+}
+
+// Result files as they come from our own runs (DIR/<scene>.pfm) or from a MiddEval3
+// submission folder (DIR/<Scene>/disp0<METHOD>.pfm, disp0.pfm preferred).
+std::string find_result_file(const std::string& results_dir, const std::string& scene_name) {
+  const fs::path dir(results_dir);
+  std::vector<fs::path> candidates = {dir / (scene_name + ".pfm"), dir / scene_name / "disp0.pfm"};
+  std::error_code error;
+  std::vector<fs::path> others;
+  for (fs::directory_iterator it(dir / scene_name, error), end; !error && it != end;
+       it.increment(error)) {
+    const std::string file = it->path().filename().string();
+    if (file.rfind("disp0", 0) == 0 && it->path().extension() == ".pfm") others.push_back(it->path());
+  }
+  std::sort(others.begin(), others.end());
+  candidates.insert(candidates.end(), others.begin(), others.end());
+  for (const fs::path& candidate : candidates) {
+    if (fs::is_regular_file(candidate, error)) return candidate.string();
+  }
+  throw InputError(candidates.front().string(),
+                   "result file not found (also looked for " +
+                       (dir / scene_name / "disp0*.pfm").string() + ")");
+}
+
+cv::Mat read_result(const std::string& path, const cv::Mat& ground_truth) {
+  cv::Mat disparity = read_pfm(path);
+  if (disparity.type() != CV_32FC1) throw InputError(path, "expected a one-channel PFM (Pf)");
+  if (disparity.size() != ground_truth.size()) {
+    throw InputError(path, "is " + std::to_string(disparity.cols) + "x" +
+                               std::to_string(disparity.rows) + " but the ground truth is " +
+                               std::to_string(ground_truth.cols) + "x" +
+                               std::to_string(ground_truth.rows) +
+                               " (errors are measured at the ground truth's resolution)");
+  }
+  return disparity;
+}
+
+struct MatchOutcome {
+  cv::Mat disparity;
+  double seconds = 0;
+};
+
+MatchOutcome run_matcher(const Scene& scene, StereoParams params, const std::string& tag) {
+  const StereoPair pair = load_stereo_pair(scene.left_path, scene.right_path);
+  params.ndisp = scene.ndisp;
+  const auto progress = [&tag](const std::string& stage) {
+    std::cerr << tag << ": " << stage << "\n";
+  };
+  const auto start = std::chrono::steady_clock::now();
+  StereoResult result = run_stereo(pair.left, pair.right, params, progress);
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  return {result.disparity, elapsed.count()};
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  write_atomically(path, [&text](const std::string& tmp_path) {
+    std::ofstream file(tmp_path, std::ios::binary);
+    file << text;
+    file.close();
+    if (!file) throw InputError(tmp_path, "cannot write file");
+  });
+}
+
+void make_output_dir(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir)) {
+    throw InputError(dir, "cannot create output folder" + (error ? ": " + error.message() : ""));
+  }
+}
+
+SceneReport evaluate_scene(const Scene& scene, const EvalOptions& options, const std::string& tag) {
+  // Ground truth first: a broken dataset fails before minutes of matching.
+  const GroundTruth truth = load_ground_truth(scene);
+  const std::string out = (fs::path(options.out_dir) / scene.name).string();
+
+  MatchOutcome outcome;
+  if (options.results_dir.empty()) {
+    outcome = run_matcher(scene, options.params, tag);
+    if (outcome.disparity.size() != truth.disparity.size()) {
+      throw InputError(scene.gt_path, "ground truth differs in size from the images");
+    }
+    write_pfm(out + "_disp.pfm", outcome.disparity);
+  } else {
+    const std::string path = find_result_file(options.results_dir, scene.name);
+    std::cerr << tag << ": reading " << path << "\n";
+    outcome.disparity = read_result(path, truth.disparity);
+  }
+
+  SceneReport report;
+  report.name = scene.name;
+  report.width = truth.disparity.cols;
+  report.height = truth.disparity.rows;
+  report.ndisp = scene.ndisp;
+  report.seconds = outcome.seconds;
+  report.scores = evaluate_disparity(outcome.disparity, truth.disparity, truth.nonocc);
+
+  const float max_disp = options.max_disp_color > 0 ? options.max_disp_color
+                                                    : static_cast<float>(scene.ndisp);
+  write_image(out + "_disp.png", colorize_disparity(outcome.disparity, max_disp));
+  write_image(out + "_error.png",
+              error_map(outcome.disparity, truth.disparity, truth.nonocc, kErrorMapThreshold));
+  return report;
+}
+
+}  // namespace
+
+int run_eval_command(std::vector<std::string> args) {
+  if (std::find(args.begin(), args.end(), "--help") != args.end() ||
+      std::find(args.begin(), args.end(), "-h") != args.end()) {
+    print_help();
+    return 0;
+  }
+  const EvalOptions options = parse_options(std::move(args));
+  const std::vector<Scene> scenes =
+      select_scenes(discover_scenes(options.dataset_root), options.scene_names);
+  make_output_dir(options.out_dir);
+
+  EvalReport report;
+  report.dataset_root = options.dataset_root;
+  report.method = options.results_dir.empty() ? method_name(options.params.method)
+                                              : "files:" + options.results_dir;
+  report.conventions = kConventions;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const std::string tag = "[" + std::to_string(i + 1) + "/" + std::to_string(scenes.size()) +
+                            "] " + scenes[i].name;
+    report.scenes.push_back(evaluate_scene(scenes[i], options, tag));
+  }
+
+  const std::string markdown = to_markdown(report);
+  write_text((fs::path(options.out_dir) / "report.md").string(), markdown);
+  write_text((fs::path(options.out_dir) / "report.json").string(), to_json(report));
+  std::cout << markdown;
+  return 0;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,47 @@
+// flexsight: command-line entry point. Errors a user can cause (InputError) are printed
+// as one line and give exit code 1; anything else is a bug and gives exit code 2.
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "host/cli/commands.h"
+#include "host/io/input_error.h"
+
+namespace {
+
+void print_usage() {
+  std::cout << "usage: flexsight <command> [options]\n"
+               "  stereo LEFT RIGHT -o DISP.pfm [options]   match a rectified pair\n"
+               "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
+               "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
+               "Run 'flexsight <command> --help' for the options of a command.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    print_usage();
+    return 1;
+  }
+  const std::string command = argv[1];
+  std::vector<std::string> args(argv + 2, argv + argc);
+  try {
+    if (command == "stereo") return flexsight::run_stereo_command(args);
+    if (command == "eval") return flexsight::run_eval_command(args);
+    if (command == "--help" || command == "-h" || command == "help") {
+      print_usage();
+      return 0;
+    }
+    std::cerr << "flexsight: unknown command '" << command << "'\n";
+    print_usage();
+    return 1;
+  } catch (const flexsight::InputError& error) {
+    std::cerr << "flexsight " << command << ": error: " << error.what() << "\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "flexsight " << command << ": internal error: " << error.what() << "\n";
+    return 2;
+  }
+}

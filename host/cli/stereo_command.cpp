@@ -1,0 +1,152 @@
+// flexsight stereo: match one rectified pair (or a MiddEval3 scene folder) and write
+// the disparity as PFM, optionally a colored PNG and scores against a ground truth.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "host/cli/arguments.h"
+#include "host/cli/commands.h"
+#include "host/eval/colorize.h"
+#include "host/eval/metrics.h"
+#include "host/io/calibration.h"
+#include "host/io/image_io.h"
+#include "host/io/input_error.h"
+#include "host/io/middlebury_v2.h"
+#include "host/io/pfm.h"
+#include "host/stereo_pipeline.h"
+
+namespace flexsight {
+namespace {
+
+namespace fs = std::filesystem;
+
+void print_help() {
+  std::cout << "usage: flexsight stereo LEFT RIGHT -o DISP.pfm [options]\n"
+               "       flexsight stereo SCENE_FOLDER -o DISP.pfm [options]\n"
+               "A MiddEval3 scene folder gives im0.png, im1.png, ndisp from calib.txt and,\n"
+               "when present, disp0GT.pfm and mask0nocc.png as ground truth.\n"
+               "  -o DISP.pfm                 output disparity (left view, PFM)\n"
+               "  --png COLOR.png             colored disparity picture\n"
+               "  --gt GT.pfm                 ground truth: print bad-N and average error\n"
+               "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
+               "  --device reference|auto     matcher backend (this build: reference)\n"
+               "  --quiet                     no progress lines\n"
+               "Matcher parameters:\n"
+            << stereo_params_help();
+}
+
+struct StereoJob {
+  std::string left;
+  std::string right;
+  std::string gt;
+  std::string gt_mask;
+  bool ndisp_from_calib = false;
+};
+
+// Two images, or one MiddEval3 scene folder.
+StereoJob resolve_inputs(const std::vector<std::string>& positional, StereoParams& params,
+                         bool ndisp_given) {
+  StereoJob job;
+  if (positional.size() == 2) {
+    job.left = positional[0];
+    job.right = positional[1];
+    return job;
+  }
+  if (positional.size() != 1) {
+    throw InputError("stereo", "expected LEFT RIGHT or one scene folder, got " +
+                                   std::to_string(positional.size()) + " inputs");
+  }
+  const fs::path scene = positional[0];
+  if (!fs::is_directory(scene)) {
+    throw InputError(scene.string(), "is not a scene folder (and no right image was given)");
+  }
+  job.left = (scene / "im0.png").string();
+  job.right = (scene / "im1.png").string();
+  if (!ndisp_given) {
+    params.ndisp = read_middlebury_calib((scene / "calib.txt").string()).ndisp;
+    job.ndisp_from_calib = true;
+  }
+  if (fs::exists(scene / "disp0GT.pfm")) job.gt = (scene / "disp0GT.pfm").string();
+  if (fs::exists(scene / "mask0nocc.png")) job.gt_mask = (scene / "mask0nocc.png").string();
+  return job;
+}
+
+void print_scores(const cv::Mat& disparity, const StereoJob& job) {
+  cv::Mat gt = read_pfm(job.gt);
+  if (gt.size() != disparity.size() || gt.channels() != 1) {
+    throw InputError(job.gt, "ground truth is " + std::to_string(gt.cols) + "x" +
+                                 std::to_string(gt.rows) + ", the disparity " +
+                                 std::to_string(disparity.cols) + "x" +
+                                 std::to_string(disparity.rows));
+  }
+  cv::Mat mask = job.gt_mask.empty() ? cv::Mat() : read_mask(job.gt_mask);
+  if (!mask.empty() && mask.size() != gt.size()) {
+    throw InputError(job.gt_mask, "mask size differs from the ground truth");
+  }
+  SceneScores scores = evaluate_disparity(disparity, gt, mask);
+  std::printf("\n| pixels | bad 0.5 | bad 1 | bad 2 | bad 3 | bad 4 | avg err | density |\n"
+              "|---|---|---|---|---|---|---|---|\n");
+  auto row = [](const char* name, const ErrorStats& s) {
+    std::printf("| %s | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %.3f px | %.1f %% |\n",
+                name, s.bad_percent[0], s.bad_percent[1], s.bad_percent[2], s.bad_percent[3],
+                s.bad_percent[4], s.avg_error, s.density_percent);
+  };
+  row("all", scores.all);
+  if (!mask.empty()) row("nonocc", scores.nonocc);
+  std::printf("(errors in pixels at this resolution; pixels without a result count as bad)\n");
+}
+
+}  // namespace
+
+int run_stereo_command(std::vector<std::string> args) {
+  if (args.empty() || take_flag(args, "--help") || take_flag(args, "-h")) {
+    print_help();
+    return args.empty() ? 1 : 0;
+  }
+  StereoParams params;
+  const bool ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();
+  consume_stereo_params(args, params);
+  std::string output = take_option(args, "-o");
+  if (output.empty()) output = take_option(args, "--output");
+  const std::string png = take_option(args, "--png");
+  std::string gt = take_option(args, "--gt");
+  std::string gt_mask = take_option(args, "--gt-mask");
+  std::string device = take_option(args, "--device");
+  const bool quiet = take_flag(args, "--quiet");
+  reject_unknown_options(args);
+  if (output.empty()) throw InputError("option -o", "an output PFM path is required");
+  if (device.empty()) device = "auto";
+  if (device != "reference" && device != "auto") {
+    throw InputError("option --device", "unknown device '" + device + "' (this build has: reference, auto)");
+  }
+  if (device == "auto") {
+    std::cerr << "note: this build has no OpenCL path yet; running the reference path\n";
+  }
+
+  StereoJob job = resolve_inputs(args, params, ndisp_given);
+  if (!gt.empty()) job.gt = gt;
+  if (!gt_mask.empty()) job.gt_mask = gt_mask;
+  const StereoPair pair = load_stereo_pair(job.left, job.right);
+  if (job.ndisp_from_calib) std::cerr << "ndisp " << params.ndisp << " from calib.txt\n";
+
+  ProgressCallback progress;
+  if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
+  std::cerr << method_name(params.method) << " on " << pair.left.cols << "x" << pair.left.rows
+            << ", ndisp " << params.ndisp << ", reference path\n";
+  const StereoResult result = run_stereo(pair.left, pair.right, params, progress);
+
+  write_pfm(output, result.disparity);
+  if (!png.empty()) {
+    write_image(png, colorize_disparity(result.disparity, static_cast<float>(params.ndisp)));
+  }
+  std::printf("| stage | seconds |\n|---|---|\n");
+  for (const StageTiming& t : result.timings) std::printf("| %s | %.3f |\n", t.stage.c_str(), t.seconds);
+  std::printf("| total | %.3f |\n", result.total_seconds());
+  std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
+  if (!job.gt.empty()) print_scores(result.disparity, job);
+  return 0;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,187 @@
+#include "host/eval/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace flexsight {
+
+namespace {
+
+// Fixed precision everywhere so reports diff cleanly between runs.
+constexpr int kPercentDecimals = 2;  // Markdown
+constexpr int kErrorDecimals = 3;    // Markdown
+constexpr int kSecondsDecimals = 2;  // Markdown
+constexpr int kJsonDecimals = 6;     // JSON keeps more for scripts that compare runs
+
+std::string fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  return buffer;
+}
+
+// Threshold as a label: 0.5 -> "0.5", 2 -> "2".
+std::string threshold_label(double threshold) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", threshold);
+  return buffer;
+}
+
+// ---- Markdown --------------------------------------------------------------------
+
+std::string markdown_cell(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    if (c == '|') escaped += '\\';
+    escaped += (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return escaped;
+}
+
+std::string markdown_header() {
+  std::string header = "| scene | size | ndisp |";
+  std::string rule = "|---|---|---:|";
+  for (double t : kBadThresholds) {
+    header += " bad " + threshold_label(t) + " (%) |";
+    rule += "---:|";
+  }
+  header += " avg err (px) | density (%) | time (s) |";
+  rule += "---:|---:|---:|";
+  return header + "\n" + rule + "\n";
+}
+
+std::string markdown_stats(const ErrorStats& stats, double seconds) {
+  std::string cells;
+  for (double percent : stats.bad_percent) cells += " " + fixed(percent, kPercentDecimals) + " |";
+  cells += " " + fixed(stats.avg_error, kErrorDecimals) + " |";
+  cells += " " + fixed(stats.density_percent, kPercentDecimals) + " |";
+  // Results read from files have no matcher time.
+  cells += " " + (seconds > 0 ? fixed(seconds, kSecondsDecimals) : std::string("-")) + " |";
+  return cells;
+}
+
+std::string markdown_table(const EvalReport& report, const char* region,
+                           ErrorStats SceneScores::*select, const ErrorStats& mean) {
+  std::string table = std::string("## ") + region + "\n\n" + markdown_header();
+  for (const SceneReport& scene : report.scenes) {
+    table += "| " + markdown_cell(scene.name) + " | " + std::to_string(scene.width) + "x" +
+             std::to_string(scene.height) + " | " + std::to_string(scene.ndisp) + " |" +
+             markdown_stats(scene.scores.*select, scene.seconds) + "\n";
+  }
+  table += "| **average** | | |" + markdown_stats(mean, report.average_seconds()) + "\n";
+  return table;
+}
+
+// ---- JSON ------------------------------------------------------------------------
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (c < 0x20) {
+          char buffer[8];
+          std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+          out += buffer;
+        } else {
+          out += static_cast<char>(c);  // UTF-8 passes through unchanged
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// JSON has no NaN or infinity; such a value can only come from a bug, and null keeps
+// the document parseable while making the problem visible.
+std::string json_number(double value, int decimals = kJsonDecimals) {
+  return std::isfinite(value) ? fixed(value, decimals) : "null";
+}
+
+std::string json_stats(const ErrorStats& stats, const std::string& indent) {
+  std::ostringstream out;
+  out << "{\n";
+  for (std::size_t t = 0; t < kBadThresholds.size(); ++t) {
+    out << indent << "  \"bad_" << threshold_label(kBadThresholds[t])
+        << "\": " << json_number(stats.bad_percent[t]) << ",\n";
+  }
+  out << indent << "  \"avg_error\": " << json_number(stats.avg_error) << ",\n";
+  out << indent << "  \"density\": " << json_number(stats.density_percent) << ",\n";
+  out << indent << "  \"evaluated\": " << stats.evaluated << "\n";
+  out << indent << "}";
+  return out.str();
+}
+
+std::string json_scene(const SceneReport& scene) {
+  std::ostringstream out;
+  out << "    {\n"
+      << "      \"name\": " << json_string(scene.name) << ",\n"
+      << "      \"width\": " << scene.width << ",\n"
+      << "      \"height\": " << scene.height << ",\n"
+      << "      \"ndisp\": " << scene.ndisp << ",\n"
+      << "      \"seconds\": " << json_number(scene.seconds, 3) << ",\n"
+      << "      \"all\": " << json_stats(scene.scores.all, "      ") << ",\n"
+      << "      \"nonocc\": " << json_stats(scene.scores.nonocc, "      ") << "\n"
+      << "    }";
+  return out.str();
+}
+
+ErrorStats average_of(const std::vector<SceneReport>& scenes, ErrorStats SceneScores::*select) {
+  std::vector<ErrorStats> stats;
+  for (const SceneReport& scene : scenes) stats.push_back(scene.scores.*select);
+  return average(stats);
+}
+
+}  // namespace
+
+ErrorStats EvalReport::average_nonocc() const { return average_of(scenes, &SceneScores::nonocc); }
+
+ErrorStats EvalReport::average_all() const { return average_of(scenes, &SceneScores::all); }
+
+double EvalReport::average_seconds() const {
+  if (scenes.empty()) return 0;
+  double sum = 0;
+  for (const SceneReport& scene : scenes) sum += scene.seconds;
+  return sum / static_cast<double>(scenes.size());
+}
+
+std::string to_markdown(const EvalReport& report) {
+  std::string text = "# FlexSight evaluation\n\n";
+  text += "- Dataset: `" + report.dataset_root + "`\n";
+  text += "- Method: " + report.method + "\n";
+  text += "- Conventions: " + report.conventions + "\n\n";
+  text += markdown_table(report, "all", &SceneScores::all, report.average_all());
+  text += "\n";
+  text += markdown_table(report, "nonocc", &SceneScores::nonocc, report.average_nonocc());
+  return text;
+}
+
+std::string to_json(const EvalReport& report) {
+  std::ostringstream out;
+  out << "{\n"
+      << "  \"dataset_root\": " << json_string(report.dataset_root) << ",\n"
+      << "  \"method\": " << json_string(report.method) << ",\n"
+      << "  \"conventions\": " << json_string(report.conventions) << ",\n"
+      << "  \"thresholds\": [";
+  for (std::size_t t = 0; t < kBadThresholds.size(); ++t) {
+    out << (t ? ", " : "") << threshold_label(kBadThresholds[t]);
+  }
+  out << "],\n  \"scenes\": [";
+  for (std::size_t i = 0; i < report.scenes.size(); ++i) {
+    out << (i ? ",\n" : "\n") << json_scene(report.scenes[i]);
+  }
+  out << (report.scenes.empty() ? "],\n" : "\n  ],\n");
+  out << "  \"average\": {\n"
+      << "    \"seconds\": " << json_number(report.average_seconds(), 3) << ",\n"
+      << "    \"all\": " << json_stats(report.average_all(), "    ") << ",\n"
+      << "    \"nonocc\": " << json_stats(report.average_nonocc(), "    ") << "\n"
+      << "  }\n"
+      << "}\n";
+  return out.str();
+}
+
+}  // namespace flexsight

@@ -1,0 +1,32 @@
+#pragma once
+// Evaluation reports: one Markdown table and one JSON document per run.
+#include <string>
+#include <vector>
+
+#include "host/eval/metrics.h"
+
+namespace flexsight {
+
+struct SceneReport {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  int ndisp = 0;
+  SceneScores scores;
+  double seconds = 0;  // matcher wall time, 0 when results were read from files
+};
+
+struct EvalReport {
+  std::string dataset_root;
+  std::string method;      // "ppms", "pms", or "files:<folder>"
+  std::string conventions; // one sentence: resolution, masks, invalid = bad
+  std::vector<SceneReport> scenes;
+  ErrorStats average_nonocc() const;
+  ErrorStats average_all() const;
+  double average_seconds() const;
+};
+
+std::string to_markdown(const EvalReport& report);
+std::string to_json(const EvalReport& report);
+
+}  // namespace flexsight

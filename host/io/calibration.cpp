@@ -1,0 +1,223 @@
+#include "host/io/calibration.h"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "host/io/input_error.h"
+#include "host/io/io_helpers.h"
+
+namespace flexsight {
+namespace {
+
+std::string trim(std::string_view text) {
+  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+  return std::string(text);
+}
+
+// Lines without their terminator; handles "\n" and "\r\n" files alike.
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::vector<std::string> split_whitespace(const std::string& text) {
+  std::vector<std::string> tokens;
+  std::istringstream in(text);
+  for (std::string token; in >> token;) tokens.push_back(token);
+  return tokens;
+}
+
+// Locale-independent and strict: the whole token must be one finite number.
+bool parse_double(std::string_view token, double& value) {
+  if (token.size() > 1 && token.front() == '+') token.remove_prefix(1);  // from_chars rejects '+'
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end && std::isfinite(value);
+}
+
+bool parse_int(std::string_view token, int& value) {
+  if (token.size() > 1 && token.front() == '+') token.remove_prefix(1);
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+// Long lines (or a binary file read by mistake) are cut short in messages.
+std::string quoted(const std::string& text) {
+  return "'" + (text.size() > 60 ? text.substr(0, 60) + "..." : text) + "'";
+}
+
+// ---- Middlebury calib.txt: one "key=value" per line --------------------------------
+
+class MiddleburyFields {
+ public:
+  explicit MiddleburyFields(const std::string& path) : path_(path) {
+    const std::vector<std::string> lines = split_lines(io_detail::read_whole_file(path));
+    for (std::size_t i = 0; i < lines.size(); ++i) add_line(lines[i], i + 1);
+  }
+
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+
+  double number(const std::string& key) const {
+    double value = 0;
+    if (!parse_double(required(key), value)) fail(key, "is not a number: " + quoted(required(key)));
+    return value;
+  }
+
+  int integer(const std::string& key) const {
+    int value = 0;
+    if (!parse_int(required(key), value)) {
+      fail(key, "is not an integer: " + quoted(required(key)));
+    }
+    return value;
+  }
+
+  // "[f 0 cx; 0 f cy; 0 0 1]" -> row-major 3x3.
+  std::array<double, 9> matrix3x3(const std::string& key) const {
+    const std::string& text = required(key);
+    const auto malformed = [&] {
+      fail(key, "is not a 3x3 matrix like [f 0 cx; 0 f cy; 0 0 1]: " + quoted(text));
+    };
+    if (text.size() < 2 || text.front() != '[' || text.back() != ']') malformed();
+
+    std::array<double, 9> m{};
+    std::size_t count = 0;
+    std::istringstream rows(text.substr(1, text.size() - 2));
+    std::size_t row_count = 0;
+    for (std::string row; std::getline(rows, row, ';'); ++row_count) {
+      const std::vector<std::string> tokens = split_whitespace(row);
+      if (row_count >= 3 || tokens.size() != 3) malformed();
+      for (const std::string& token : tokens) {
+        if (!parse_double(token, m[count++])) malformed();
+      }
+    }
+    if (count != 9) malformed();
+    return m;
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(path_, "key '" + key + "' " + problem);
+  }
+
+ private:
+  void add_line(const std::string& raw, std::size_t number) {
+    const std::string line = trim(raw);
+    if (line.empty() || line.front() == '#') return;
+    const std::size_t eq = line.find('=');
+    const std::string key = eq == std::string::npos ? "" : trim(line.substr(0, eq));
+    if (key.empty()) {
+      throw InputError(path_, "line " + std::to_string(number) + " is not 'key=value': " +
+                                  quoted(line));
+    }
+    if (!values_.emplace(key, trim(line.substr(eq + 1))).second) {
+      throw InputError(path_, "key '" + key + "' appears more than once");
+    }
+  }
+
+  const std::string& required(const std::string& key) const {
+    const auto it = values_.find(key);
+    if (it == values_.end()) throw InputError(path_, "missing key '" + key + "'");
+    return it->second;
+  }
+
+  std::string path_;
+  std::map<std::string, std::string> values_;
+};
+
+void require_positive_focal(const MiddleburyFields& fields, const std::string& key,
+                            const std::array<double, 9>& cam) {
+  if (!(cam[0] > 0) || !(cam[4] > 0)) fields.fail(key, "has a focal length <= 0");
+}
+
+void require_positive(const MiddleburyFields& fields, const std::string& key, double value) {
+  if (!(value > 0)) {
+    std::ostringstream text;
+    text << value;  // "0", "-3.5": shortest readable form, unlike std::to_string
+    fields.fail(key, "must be positive, got " + text.str());
+  }
+}
+
+// ---- KITTI calibration: "NAME: n1 n2 ..." per line ----------------------------------
+
+struct KittiMatrixName {
+  const char* kitti2012;  // "P0"
+  const char* rectified;  // "P_rect_00"
+};
+
+// Returns the 12 numbers of the line named `name` (either spelling), or throws.
+std::array<double, 12> kitti_matrix(const std::vector<std::string>& lines,
+                                    const KittiMatrixName& name, const std::string& path) {
+  bool found = false;
+  std::array<double, 12> p{};
+  for (const std::string& line : lines) {
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string key = trim(line.substr(0, colon));
+    if (key != name.kitti2012 && key != name.rectified) continue;
+    if (found) throw InputError(path, "'" + key + "' is defined more than once");
+    found = true;
+
+    const std::vector<std::string> tokens = split_whitespace(line.substr(colon + 1));
+    if (tokens.size() != 12) {
+      throw InputError(path, "line '" + key + "' has " + std::to_string(tokens.size()) +
+                                 " numbers (expected 12 for a 3x4 projection matrix)");
+    }
+    for (std::size_t i = 0; i < 12; ++i) {
+      if (!parse_double(tokens[i], p[i])) {
+        throw InputError(path, "line '" + key + "' has a malformed number " + quoted(tokens[i]));
+      }
+    }
+    if (!(p[0] > 0)) throw InputError(path, "line '" + key + "' has a focal length <= 0");
+  }
+  if (!found) {
+    throw InputError(path, std::string("missing '") + name.kitti2012 + "' (or '" +
+                               name.rectified + "') projection matrix");
+  }
+  return p;
+}
+
+}  // namespace
+
+MiddleburyCalib read_middlebury_calib(const std::string& path) {
+  const MiddleburyFields fields(path);
+  MiddleburyCalib calib;
+  calib.cam0 = fields.matrix3x3("cam0");
+  calib.cam1 = fields.matrix3x3("cam1");
+  calib.doffs = fields.number("doffs");
+  calib.baseline_mm = fields.number("baseline");
+  calib.width = fields.integer("width");
+  calib.height = fields.integer("height");
+  calib.ndisp = fields.integer("ndisp");
+  if (fields.has("vmin")) calib.vmin = fields.integer("vmin");
+  if (fields.has("vmax")) calib.vmax = fields.integer("vmax");
+
+  require_positive_focal(fields, "cam0", calib.cam0);
+  require_positive_focal(fields, "cam1", calib.cam1);
+  require_positive(fields, "baseline", calib.baseline_mm);
+  require_positive(fields, "width", calib.width);
+  require_positive(fields, "height", calib.height);
+  require_positive(fields, "ndisp", calib.ndisp);
+  return calib;
+}
+
+KittiCalib read_kitti_calib(const std::string& path) {
+  const std::vector<std::string> lines = split_lines(io_detail::read_whole_file(path));
+  KittiCalib calib;
+  calib.P0 = kitti_matrix(lines, {"P0", "P_rect_00"}, path);
+  calib.P1 = kitti_matrix(lines, {"P1", "P_rect_01"}, path);
+  return calib;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,101 @@
+#pragma once
+// Internal helpers shared by the readers in host/io (not part of the public API).
+// Header-only so that the list of sources in CMakeLists.txt stays as it is.
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <system_error>
+
+#include "host/io/input_error.h"
+
+namespace flexsight::io_detail {
+
+// Checks the problems every reader shares before it looks at the content, so the
+// user gets "does not exist" rather than a decoder's vague complaint.
+inline void require_readable_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) {
+    throw InputError(path, "cannot be accessed (" + ec.message() + ")");
+  }
+  if (!fs::exists(status)) throw InputError(path, "does not exist");
+  if (fs::is_directory(status)) throw InputError(path, "is a directory, not a file");
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size == 0) throw InputError(path, "is empty");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw InputError(path, "cannot be opened");
+}
+
+// Whole file as bytes; the formats we parse by hand (PFM, calibration) are small
+// enough that reading them at once keeps the parsers simple.
+inline std::string read_whole_file(const std::string& path) {
+  require_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "cannot be read");
+  if (bytes.empty()) throw InputError(path, "is empty");
+  return bytes;
+}
+
+// "8U", "16U", "32F", ... as users see them in OpenCV messages.
+inline std::string depth_name(int depth) {
+  switch (depth) {
+    case CV_8U: return "8U";
+    case CV_8S: return "8S";
+    case CV_16U: return "16U";
+    case CV_16S: return "16S";
+    case CV_32S: return "32S";
+    case CV_32F: return "32F";
+    case CV_64F: return "64F";
+    case CV_16F: return "16F";
+    default: return "depth " + std::to_string(depth);
+  }
+}
+
+// "16U 3-channel 640x480", for messages about an image we did not expect.
+inline std::string describe(const cv::Mat& image) {
+  return depth_name(image.depth()) + " " + std::to_string(image.channels()) + "-channel " +
+         std::to_string(image.cols) + "x" + std::to_string(image.rows);
+}
+
+inline std::string size_text(const cv::Size& size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
+
+// cv::imread with IMREAD_UNCHANGED (keeps 16-bit and alpha), with the file checks
+// above and OpenCV's exceptions turned into InputError.
+inline cv::Mat imread_unchanged(const std::string& path) {
+  require_readable_file(path);
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError(path, "cannot be decoded as an image (" + e.msg + ")");
+  }
+  if (image.empty()) throw InputError(path, "cannot be decoded as an image");
+  return image;
+}
+
+// Some copies of gray maps (disparities, masks) are stored as three equal channels.
+// Returns the single-channel view of `image`, or throws when the channels differ.
+inline cv::Mat single_channel_of_gray(const cv::Mat& image, const std::string& path) {
+  if (image.channels() == 1) return image;
+  if (image.channels() != 3) {
+    throw InputError(path, "has " + std::to_string(image.channels()) +
+                               " channels (expected gray, or three equal channels)");
+  }
+  cv::Mat planes[3];
+  cv::split(image, planes);
+  if (cv::countNonZero(planes[0] != planes[1]) != 0 ||
+      cv::countNonZero(planes[0] != planes[2]) != 0) {
+    throw InputError(path, "is a color image (its three channels differ), expected gray");
+  }
+  return planes[0];
+}
+
+}  // namespace flexsight::io_detail

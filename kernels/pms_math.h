@@ -1,0 +1,323 @@
+/*
+ * Per-pixel mathematics of PatchMatch Stereo, shared verbatim by the scalar reference
+ * path (fallback/, compiled as C++) and the OpenCL kernels (the .cl files of kernels/, compiled as
+ * OpenCL C). Keeping one copy is what makes the two paths give the same bytes.
+ *
+ * Rules for everything in this file:
+ *  - plain float arithmetic written in the order it must be evaluated; both compilers
+ *    run with contraction off (-ffp-contract=off, #pragma OPENCL FP_CONTRACT OFF), so
+ *    a*b+c is always a rounded product then a rounded sum;
+ *  - the only library maths are floor, fabs, fmin/fmax and sqrt / division, which are
+ *    exact or correctly rounded (OpenCL needs -cl-fp32-correctly-rounded-divide-sqrt);
+ *    exp() is replaced by a table built once on the host (fallback/weight_table.h);
+ *  - random numbers come from a counter-based hash of (seed, view, pixel, iteration,
+ *    trial), so no state is shared between pixels and thread order cannot matter.
+ *
+ * Buffers are flat float arrays: colour 4 floats per pixel (r, g, b, unused; integer
+ * values 0..255), gradient 2 floats per pixel (gx, gy), planes 4 floats per pixel
+ * (a, b, c, unused) meaning disparity d(x, y) = a*x + b*y + c in that view's pixels.
+ */
+#ifndef FLEXSIGHT_PMS_MATH_H
+#define FLEXSIGHT_PMS_MATH_H
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#define PMS_GLOBAL __global
+#define PMS_INLINE inline
+typedef uint pms_u32;
+#define PMS_FLOOR(x) floor(x)
+#define PMS_FABS(x) fabs(x)
+#define PMS_FMIN(x, y) fmin(x, y)
+#define PMS_FMAX(x, y) fmax(x, y)
+#define PMS_SQRT(x) sqrt(x)
+#else
+#include <cmath>
+#include <cstdint>
+#define PMS_GLOBAL
+#define PMS_INLINE inline
+typedef std::uint32_t pms_u32;
+#define PMS_FLOOR(x) std::floor(x)
+#define PMS_FABS(x) std::fabs(x)
+#define PMS_FMIN(x, y) std::fmin(x, y)
+#define PMS_FMAX(x, y) std::fmax(x, y)
+#define PMS_SQRT(x) std::sqrt(x)
+#endif
+
+/* Number of entries of the support-weight table: the L1 distance of two RGB8 colours
+ * is an integer in 0..765. */
+#define PMS_WEIGHT_TABLE_SIZE 766
+
+/* Views. The left view matches at x - d, the right view at x + d. */
+#define PMS_VIEW_LEFT 0
+#define PMS_VIEW_RIGHT 1
+
+/* Trial keys of the random generator, so that different uses of one (pixel, iteration)
+ * never share numbers: 0..2 for the initial plane, then 4 per random-search trial. */
+#define PMS_TRIAL_KEY_INIT 0U
+#define PMS_TRIAL_KEY_SEARCH 16U
+
+/* Slanted planes steeper than this (|n_z| below it) are not proposed by the random
+ * search: they are grazing surfaces that a 35-pixel window cannot match reliably. */
+#define PMS_MIN_NORMAL_Z 0.1f
+
+/* Largest |a| and |b| of the random initial planes (disparity change per pixel). */
+#define PMS_INIT_MAX_SLOPE 0.5f
+
+typedef struct {
+  int radius;            /* half window: the window spans [-radius, radius] */
+  int step;              /* sample every step-th row and column of the window */
+  float alpha;           /* weight of the gradient term */
+  float one_minus_alpha; /* computed once on the host so both paths use one value */
+  float tau_color;
+  float tau_gradient;
+} PmsCostParams;
+
+/* ---------------------------------------------------------------- random numbers */
+
+/* A 32-bit integer hash with good avalanche ("lowbias32", C. Wellons). */
+PMS_INLINE pms_u32 pms_hash(pms_u32 x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return x;
+}
+
+/* The counter-based generator: one independent 32-bit value per key. */
+PMS_INLINE pms_u32 pms_random_u32(pms_u32 seed, pms_u32 view, pms_u32 pixel,
+                                  pms_u32 iteration, pms_u32 trial) {
+  pms_u32 h = pms_hash(seed ^ 0x9e3779b9U);
+  h = pms_hash(h ^ pixel);
+  h = pms_hash(h ^ (iteration * 2U + view));
+  h = pms_hash(h ^ trial);
+  return h;
+}
+
+/* Uniform float in [0, 1): the top 24 bits scaled exactly by 2^-24. */
+PMS_INLINE float pms_u32_to_unit(pms_u32 bits) {
+  return (float)(bits >> 8) * (1.0f / 16777216.0f);
+}
+
+PMS_INLINE float pms_random_unit(pms_u32 seed, pms_u32 view, pms_u32 pixel, pms_u32 iteration,
+                                 pms_u32 trial) {
+  return pms_u32_to_unit(pms_random_u32(seed, view, pixel, iteration, trial));
+}
+
+/* Key of component (0: disparity, 1-3: normal) of random-search trial `trial`. */
+PMS_INLINE pms_u32 pms_search_trial_key(int trial, int component) {
+  return PMS_TRIAL_KEY_SEARCH + 4U * (pms_u32)trial + (pms_u32)component;
+}
+
+/* ------------------------------------------------------------------ plane maths */
+
+PMS_INLINE float pms_plane_disparity(float a, float b, float c, float x, float y) {
+  return a * x + b * y + c;
+}
+
+/* Nearest integer, halves rounded up; floor keeps it exact and identical everywhere. */
+PMS_INLINE float pms_floor_round(float v) { return PMS_FLOOR(v + 0.5f); }
+
+/* A random plane through a disparity drawn uniformly in [0, max_disparity] with slopes
+ * drawn uniformly in [-PMS_INIT_MAX_SLOPE, PMS_INIT_MAX_SLOPE]. Writes (a, b, c). */
+PMS_INLINE void pms_random_plane(pms_u32 seed, pms_u32 view, pms_u32 pixel, pms_u32 iteration,
+                                 int x, int y, float max_disparity, float* abc) {
+  pms_u32 t = PMS_TRIAL_KEY_INIT;
+  float d = pms_random_unit(seed, view, pixel, iteration, t + 0U) * max_disparity;
+  float a = (pms_random_unit(seed, view, pixel, iteration, t + 1U) * 2.0f - 1.0f) *
+            PMS_INIT_MAX_SLOPE;
+  float b = (pms_random_unit(seed, view, pixel, iteration, t + 2U) * 2.0f - 1.0f) *
+            PMS_INIT_MAX_SLOPE;
+  abc[0] = a;
+  abc[1] = b;
+  abc[2] = d - a * (float)x - b * (float)y;
+}
+
+/* Re-expresses a plane of one view in the other view. A left-view point (x, y) with
+ * disparity d sees the right-view point (x - d, y) with the same disparity, so
+ *   left -> right: d = a (x' + d) + b y + c  =>  d = (a x' + b y + c) / (1 - a)
+ *   right -> left: d = a (x - d) + b y + c   =>  d = (a x + b y + c) / (1 + a).
+ * Returns 0 (and leaves abc_out alone) when the plane is too steep to transfer. */
+PMS_INLINE int pms_transfer_plane(const float* abc_in, int from_view, float* abc_out) {
+  float denominator = from_view == PMS_VIEW_LEFT ? 1.0f - abc_in[0] : 1.0f + abc_in[0];
+  if (!(denominator > 0.05f)) return 0;
+  abc_out[0] = abc_in[0] / denominator;
+  abc_out[1] = abc_in[1] / denominator;
+  abc_out[2] = abc_in[2] / denominator;
+  return 1;
+}
+
+/* Carries a plane from a pyramid level to the next finer one (factor 2). The coarse
+ * pixel X covers the fine pixels 2X and 2X+1, so its centre is fine x = 2X + 0.5 and
+ * d_fine(x, y) = 2 d_coarse((x - 0.5) / 2, (y - 0.5) / 2):
+ * slopes are kept, c becomes 2c - (a + b) / 2. */
+PMS_INLINE void pms_carry_plane_to_finer(const float* abc_coarse, float* abc_fine) {
+  abc_fine[0] = abc_coarse[0];
+  abc_fine[1] = abc_coarse[1];
+  abc_fine[2] = 2.0f * abc_coarse[2] - 0.5f * (abc_coarse[0] + abc_coarse[1]);
+}
+
+/* The random-search candidate: the plane's disparity at (x, y) moved by up to
+ * +-disparity_range and its unit normal by up to +-normal_range per component.
+ * n = (-a, -b, 1) / |(-a, -b, 1)|; after perturbation only the ratios n_x/n_z and
+ * n_y/n_z matter, so the result needs no second normalisation.
+ * Returns 0 when the perturbed normal is too steep (see PMS_MIN_NORMAL_Z). */
+PMS_INLINE int pms_perturb_plane(const float* abc, int x, int y, float max_disparity,
+                                 float disparity_range, float normal_range, float u_d,
+                                 float u_nx, float u_ny, float u_nz, float* abc_out) {
+  float fx = (float)x;
+  float fy = (float)y;
+  float d = pms_plane_disparity(abc[0], abc[1], abc[2], fx, fy);
+  d = d + (u_d * 2.0f - 1.0f) * disparity_range;
+  d = PMS_FMIN(PMS_FMAX(d, 0.0f), max_disparity);
+  float inv_norm = 1.0f / PMS_SQRT(abc[0] * abc[0] + abc[1] * abc[1] + 1.0f);
+  float nx = -abc[0] * inv_norm + (u_nx * 2.0f - 1.0f) * normal_range;
+  float ny = -abc[1] * inv_norm + (u_ny * 2.0f - 1.0f) * normal_range;
+  float nz = inv_norm + (u_nz * 2.0f - 1.0f) * normal_range;
+  float length = PMS_SQRT(nx * nx + ny * ny + nz * nz);
+  if (!(nz > PMS_MIN_NORMAL_Z * length)) return 0;
+  float a = -nx / nz;
+  float b = -ny / nz;
+  abc_out[0] = a;
+  abc_out[1] = b;
+  abc_out[2] = d - a * fx - b * fy;
+  return 1;
+}
+
+/* Spatial propagation candidates of a red-black schedule: the 4-neighbours at
+ * distances 1 and 5. Odd distances keep every candidate on the other colour, and the
+ * far ones let good planes travel five pixels per half-step instead of one. */
+#define PMS_SPATIAL_CANDIDATES 8
+PMS_INLINE void pms_spatial_offset(int candidate, int* dx, int* dy) {
+  int distance = candidate < 4 ? 1 : 5;
+  int direction = candidate & 3;
+  *dx = direction == 0 ? -distance : (direction == 1 ? distance : 0);
+  *dy = direction == 2 ? -distance : (direction == 3 ? distance : 0);
+}
+
+/* Random search schedule: trial k may move the disparity by initial_range / 2^k and
+ * each normal component by normal_range / 2^k; trials run while the disparity range
+ * is at least min_range. */
+PMS_INLINE int pms_search_trial_count(float initial_range, float min_range) {
+  int count = 0;
+  for (float range = initial_range; range >= min_range && count < 30; range = range * 0.5f) {
+    ++count;
+  }
+  return count;
+}
+
+/* --------------------------------------------------------------- matching cost */
+
+/* Index of the support-weight table for two RGB8 colours stored as floats. */
+PMS_INLINE int pms_color_l1(const PMS_GLOBAL float* p, const PMS_GLOBAL float* q) {
+  return (int)(PMS_FABS(p[0] - q[0]) + PMS_FABS(p[1] - q[1]) + PMS_FABS(p[2] - q[2]));
+}
+
+/* First window offset at or after max(-radius, lowest) on the grid k*step (the grid
+ * goes through 0 so the centre pixel is always sampled). lowest <= 0. */
+PMS_INLINE int pms_first_offset(int radius, int step, int lowest) {
+  int low = lowest > -radius ? lowest : -radius;
+  return -((-low) / step) * step;
+}
+
+/*
+ * Adaptive-support-weighted matching cost of plane (a, b, c) at pixel (px, py) of the
+ * reference view against the other view (Bleyer et al. 2011, eq. 2-4):
+ *   sum over window pixels q of  w(p, q) * [ (1 - alpha) min(|I_q - I'_q'|_1, tau_col)
+ *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad) ]
+ * with w(p, q) = weights[|I_p - I_q|_1] = exp(-|I_p - I_q|_1 / gamma), q' = q -+ d(q)
+ * (direction -1 for the left view, +1 for the right), and I' linearly interpolated.
+ * Window pixels outside the image are left out; the set depends only on p, so every
+ * candidate plane of p is summed over the same pixels. Matching positions outside the
+ * other image are clamped to its border.
+ *
+ * The sum stops as soon as it reaches `bound` (every term is >= 0, so the final sum
+ * could only be larger): the caller rejects any result >= its best cost anyway. Pass
+ * a huge bound for the full cost.
+ */
+PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
+                                const PMS_GLOBAL float* ref_grad,
+                                const PMS_GLOBAL float* other_color,
+                                const PMS_GLOBAL float* other_grad,
+                                const PMS_GLOBAL float* weights, int width, int height,
+                                PmsCostParams params, int px, int py, float a, float b,
+                                float c, float direction, float bound) {
+  const PMS_GLOBAL float* centre = ref_color + 4 * (py * width + px);
+  int y_begin = pms_first_offset(params.radius, params.step, -py);
+  int y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
+  int x_begin = pms_first_offset(params.radius, params.step, -px);
+  int x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
+  float max_x = (float)(width - 1);
+  float sum = 0.0f;
+  for (int dy = y_begin; dy <= y_end; dy += params.step) {
+    int qy = py + dy;
+    float row_term = b * (float)qy;
+    const PMS_GLOBAL float* ref_row = ref_color + 4 * qy * width;
+    const PMS_GLOBAL float* ref_grad_row = ref_grad + 2 * qy * width;
+    const PMS_GLOBAL float* other_row = other_color + 4 * qy * width;
+    const PMS_GLOBAL float* other_grad_row = other_grad + 2 * qy * width;
+    for (int dx = x_begin; dx <= x_end; dx += params.step) {
+      int qx = px + dx;
+      float d = a * (float)qx + row_term + c;
+      float match_x = PMS_FMIN(PMS_FMAX((float)qx + direction * d, 0.0f), max_x);
+      float x0f = PMS_FLOOR(match_x);
+      int x0 = (int)x0f;
+      int x1 = x0 + 1 < width ? x0 + 1 : x0;
+      float t = match_x - x0f;
+      const PMS_GLOBAL float* q = ref_row + 4 * qx;
+      const PMS_GLOBAL float* m0 = other_row + 4 * x0;
+      const PMS_GLOBAL float* m1 = other_row + 4 * x1;
+      float color_diff = PMS_FABS(q[0] - (m0[0] + t * (m1[0] - m0[0]))) +
+                         PMS_FABS(q[1] - (m0[1] + t * (m1[1] - m0[1]))) +
+                         PMS_FABS(q[2] - (m0[2] + t * (m1[2] - m0[2])));
+      const PMS_GLOBAL float* g = ref_grad_row + 2 * qx;
+      const PMS_GLOBAL float* g0 = other_grad_row + 2 * x0;
+      const PMS_GLOBAL float* g1 = other_grad_row + 2 * x1;
+      float grad_diff = PMS_FABS(g[0] - (g0[0] + t * (g1[0] - g0[0]))) +
+                        PMS_FABS(g[1] - (g0[1] + t * (g1[1] - g0[1])));
+      float dissimilarity = params.one_minus_alpha * PMS_FMIN(color_diff, params.tau_color) +
+                            params.alpha * PMS_FMIN(grad_diff, params.tau_gradient);
+      sum = sum + weights[pms_color_l1(centre, q)] * dissimilarity;
+    }
+    if (sum >= bound) return sum;
+  }
+  return sum;
+}
+
+/* ------------------------------------------------------------- image preparation */
+
+/* 2x2 box average with rounding, integer-exact; odd sizes repeat the last row/column.
+ * Writes the 3 colour channels of coarse pixel (x, y). */
+PMS_INLINE void pms_downsample_pixel(const PMS_GLOBAL float* fine, int fine_width,
+                                     int fine_height, int x, int y, PMS_GLOBAL float* out) {
+  int x0 = 2 * x;
+  int y0 = 2 * y;
+  int x1 = x0 + 1 < fine_width ? x0 + 1 : x0;
+  int y1 = y0 + 1 < fine_height ? y0 + 1 : y0;
+  for (int ch = 0; ch < 3; ++ch) {
+    float s = fine[4 * (y0 * fine_width + x0) + ch] + fine[4 * (y0 * fine_width + x1) + ch] +
+              fine[4 * (y1 * fine_width + x0) + ch] + fine[4 * (y1 * fine_width + x1) + ch];
+    out[ch] = PMS_FLOOR((s + 2.0f) * 0.25f);
+  }
+  out[3] = 0.0f;
+}
+
+/* Grey value scaled by 3 (r + g + b), exact in float. */
+PMS_INLINE float pms_grey3(const PMS_GLOBAL float* color, int index) {
+  return color[4 * index] + color[4 * index + 1] + color[4 * index + 2];
+}
+
+/* Central-difference gradient of the grey value (r + g + b) / 3, border pixels use a
+ * one-sided neighbour (clamped coordinates). */
+PMS_INLINE void pms_gradient_pixel(const PMS_GLOBAL float* color, int width, int height, int x,
+                                   int y, PMS_GLOBAL float* out) {
+  int xl = x > 0 ? x - 1 : x;
+  int xr = x + 1 < width ? x + 1 : x;
+  int yu = y > 0 ? y - 1 : y;
+  int yd = y + 1 < height ? y + 1 : y;
+  const float scale = 1.0f / 6.0f;
+  out[0] = (pms_grey3(color, y * width + xr) - pms_grey3(color, y * width + xl)) * scale;
+  out[1] = (pms_grey3(color, yd * width + x) - pms_grey3(color, yu * width + x)) * scale;
+}
+
+#endif /* FLEXSIGHT_PMS_MATH_H */

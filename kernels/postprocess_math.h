@@ -1,0 +1,124 @@
+/*
+ * Per-pixel mathematics of the stages around PatchMatch: left/right confidence and
+ * consistency, filling of inconsistent pixels, and the weighted median. Shared by the
+ * reference path (C++) and the kernels (OpenCL C); same rules as pms_math.h.
+ */
+#ifndef FLEXSIGHT_POSTPROCESS_MATH_H
+#define FLEXSIGHT_POSTPROCESS_MATH_H
+
+#include "pms_math.h"
+
+/* Disparity of the other view at the pixel that (x, y) with disparity d matches, or -1
+ * when that pixel lies outside the image. direction: -1 left view, +1 right view. */
+PMS_INLINE float pms_matched_disparity(const PMS_GLOBAL float* other_disparity, int width,
+                                       int x, int y, float d, float direction) {
+  float match_x = pms_floor_round((float)x + direction * d);
+  if (match_x < 0.0f || match_x > (float)(width - 1)) return -1.0f;
+  return other_disparity[y * width + (int)match_x];
+}
+
+/* The paper's confidence C(p) = 1 / (1 + |d_p - d_p'|); 0 where p' is outside. */
+PMS_INLINE float pms_confidence(const PMS_GLOBAL float* disparity,
+                                const PMS_GLOBAL float* other_disparity, int width, int x, int y,
+                                float direction) {
+  float d = disparity[y * width + x];
+  float d_other = pms_matched_disparity(other_disparity, width, x, y, d, direction);
+  if (d_other < 0.0f) return 0.0f;
+  return 1.0f / (1.0f + PMS_FABS(d - d_other));
+}
+
+/* Left/right check: 1 when both views agree within `tolerance` pixels. */
+PMS_INLINE int pms_lr_consistent(const PMS_GLOBAL float* disparity,
+                                 const PMS_GLOBAL float* other_disparity, int width, int x,
+                                 int y, float direction, float tolerance) {
+  float d = disparity[y * width + x];
+  float d_other = pms_matched_disparity(other_disparity, width, x, y, d, direction);
+  return d_other >= 0.0f && PMS_FABS(d - d_other) <= tolerance;
+}
+
+/* Occlusion filling (Bleyer et al. 2011, Sec. 3.3): an inconsistent pixel takes the
+ * plane of the nearest consistent pixel to its left or right, whichever gives the lower
+ * disparity at the pixel (occluded pixels belong to the background). With no consistent
+ * pixel on the row, the pixel keeps its own plane. Writes (a, b, c). */
+PMS_INLINE void pms_fill_pixel(const PMS_GLOBAL float* planes,
+                               const PMS_GLOBAL unsigned char* consistent, int width, int x,
+                               int y, float* abc) {
+  int row = y * width;
+  int left = x - 1;
+  while (left >= 0 && !consistent[row + left]) --left;
+  int right = x + 1;
+  while (right < width && !consistent[row + right]) ++right;
+  int source = row + x;
+  if (left >= 0 && right < width) {
+    const PMS_GLOBAL float* pl = planes + 4 * (row + left);
+    const PMS_GLOBAL float* pr = planes + 4 * (row + right);
+    float dl = pms_plane_disparity(pl[0], pl[1], pl[2], (float)x, (float)y);
+    float dr = pms_plane_disparity(pr[0], pr[1], pr[2], (float)x, (float)y);
+    source = dl <= dr ? row + left : row + right;
+  } else if (left >= 0) {
+    source = row + left;
+  } else if (right < width) {
+    source = row + right;
+  }
+  abc[0] = planes[4 * source];
+  abc[1] = planes[4 * source + 1];
+  abc[2] = planes[4 * source + 2];
+}
+
+/* Collects the disparities of the window around (x, y) (offsets k*step within
+ * -radius..radius, pixels outside the image left out) with their support weights
+ * weights[|I_p - I_q|_1]. Returns the number of samples written. */
+PMS_INLINE int pms_gather_median_samples(const PMS_GLOBAL float* disparity,
+                                         const PMS_GLOBAL float* color,
+                                         const PMS_GLOBAL float* weights, int width, int height,
+                                         int x, int y, int radius, int step, float* values,
+                                         float* sample_weights) {
+  const PMS_GLOBAL float* centre = color + 4 * (y * width + x);
+  int n = 0;
+  int first = -(radius / step) * step;
+  for (int dy = first; dy <= radius; dy += step) {
+    int qy = y + dy;
+    if (qy < 0 || qy >= height) continue;
+    for (int dx = first; dx <= radius; dx += step) {
+      int qx = x + dx;
+      if (qx < 0 || qx >= width) continue;
+      int q = qy * width + qx;
+      values[n] = disparity[q];
+      sample_weights[n] = weights[pms_color_l1(centre, color + 4 * q)];
+      ++n;
+    }
+  }
+  return n;
+}
+
+/*
+ * Weighted median of n samples (value, weight): the smallest sample value v with
+ *   sum of weights of samples with value <= v  >=  half the total weight.
+ * Sums always run in sample order, so the answer does not depend on how the caller
+ * sorted `sorted_values` (the same values in ascending order); binary search over it is
+ * valid because those sums grow with v even in float arithmetic (rounding is monotone).
+ */
+PMS_INLINE float pms_weighted_median(const float* values, const float* weights,
+                                     const float* sorted_values, int n) {
+  float total = 0.0f;
+  for (int i = 0; i < n; ++i) total = total + weights[i];
+  float half = total * 0.5f;
+  int lo = 0;
+  int hi = n - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    float v = sorted_values[mid];
+    float below = 0.0f;
+    for (int i = 0; i < n; ++i) {
+      if (values[i] <= v) below = below + weights[i];
+    }
+    if (below >= half) {
+      hi = mid;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  return sorted_values[lo];
+}
+
+#endif /* FLEXSIGHT_POSTPROCESS_MATH_H */
