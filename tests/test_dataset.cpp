@@ -4,9 +4,12 @@
 // discovery is also checked on the real benchmark copies.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -439,6 +442,11 @@ class JsonReader {
     if (peek() != c) fail(std::string("expected '") + c + "'");
     ++pos_;
   }
+  bool consume(char c) {
+    if (peek() != c) return false;
+    ++pos_;
+    return true;
+  }
   bool literal(const std::string& word) {
     if (text_.compare(pos_, word.size(), word) != 0) return false;
     pos_ += word.size();
@@ -468,27 +476,29 @@ class JsonReader {
     Json object;
     object.kind = Json::Kind::Object;
     expect('{');
-    if (peek() == '}') return ++pos_, object;
-    for (;;) {
-      if (peek() != '"') fail("expected a key");
-      object.keys.push_back(parse_string());
-      expect(':');
-      object.items.push_back(parse_value());
-      if (peek() == '}') return ++pos_, object;
-      expect(',');
+    if (peek() != '}') {
+      do {
+        if (peek() != '"') fail("expected a key");
+        object.keys.push_back(parse_string());
+        expect(':');
+        object.items.push_back(parse_value());
+      } while (consume(','));
     }
+    expect('}');
+    return object;
   }
 
   Json parse_array() {
     Json array;
     array.kind = Json::Kind::Array;
     expect('[');
-    if (peek() == ']') return ++pos_, array;
-    for (;;) {
-      array.items.push_back(parse_value());
-      if (peek() == ']') return ++pos_, array;
-      expect(',');
+    if (peek() != ']') {
+      do {
+        array.items.push_back(parse_value());
+      } while (consume(','));
     }
+    expect(']');
+    return array;
   }
 
   std::string parse_string() {
@@ -585,7 +595,7 @@ TEST(Report, MarkdownHasScenesNumbersAndConventions) {
   const std::string markdown = to_markdown(sample_report());
   for (const char* text : {"Adirondack", "Motor", "average", "test conventions", "ppms",
                            "bad 0.5", "bad 2", "bad 4", "avg err", "density", "time",
-                           "12.50", "20.00", "12.50", "15.00", "10.00", "2.250", "718x496"}) {
+                           "12.50", "20.00", "15.00", "10.00", "2.250", "718x496"}) {
     EXPECT_NE(markdown.find(text), std::string::npos) << text << "\n" << markdown;
   }
   // Both regions are tabulated.
@@ -756,10 +766,13 @@ TEST(EvalCommand, RejectsBadInput) {
   expect_input_error({tree.results.string(), "--out", tree.out.string()}, tree.results.string());
   expect_input_error({"--out", tree.out.string()}, "DATASET_ROOT");
 
-  // A missing result file is named in the message.
-  fs::remove(tree.results / "Alpha.pfm");
-  expect_input_error(tree.args(), "Alpha.pfm");
+  // A missing result file is named in the message, and found before any scene is
+  // scored (Beta comes after Alpha).
+  fs::remove_all(tree.results / "Beta");
+  expect_input_error(tree.args(), "Beta.pfm");
+  EXPECT_FALSE(fs::exists(tree.out / "Alpha_disp.png"));
   // A result of another size than the ground truth.
+  write_pfm_by_hand(tree.results / "Beta.pfm", from_rows({{4, 4}, {4, 4}}));
   write_pfm_by_hand(tree.results / "Alpha.pfm", from_rows({{1, 2}}));
   expect_input_error(tree.args(), "Alpha.pfm");
 }
@@ -767,8 +780,8 @@ TEST(EvalCommand, RejectsBadInput) {
 TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
   TempDir dir;
   const fs::path root = dir / "dataset";
-  const cv::Mat gt(24, 40, CV_32FC1, cv::Scalar(4));
-  write_middeval3_scene(root / "Tiny", gt, cv::Mat(gt.size(), CV_8UC1, cv::Scalar(255)), 8);
+  const cv::Mat gt(48, 64, CV_32FC1, cv::Scalar(4));
+  write_middeval3_scene(root / "Tiny", gt, cv::Mat(gt.size(), CV_8UC1, cv::Scalar(255)), 16);
   const fs::path out = dir / "out";
 
   testing::internal::CaptureStdout();
@@ -783,9 +796,26 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
   EXPECT_EQ(disparity.size(), gt.size());
   const Json json = parse_json(read_file(out / "report.json"));
   EXPECT_GT(json["scenes"][0]["seconds"].num(), 0);
-  EXPECT_EQ(json["scenes"][0]["all"]["evaluated"].num(), 40 * 24);
-  EXPECT_EQ(json["scenes"][0]["ndisp"].num(), 8);
+  EXPECT_EQ(json["scenes"][0]["all"]["evaluated"].num(), 64 * 48);
+  EXPECT_EQ(json["scenes"][0]["ndisp"].num(), 16);
   EXPECT_TRUE(fs::exists(out / "Tiny_error.png"));
+
+  // The output folder can be scored again as results: same numbers, no matcher time.
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  const int rescore = run_eval_command(
+      {root.string(), "--results", out.string(), "--out", (dir / "out2").string()});
+  testing::internal::GetCapturedStderr();
+  testing::internal::GetCapturedStdout();
+  ASSERT_EQ(rescore, 0);
+  const Json again = parse_json(read_file(dir / "out2" / "report.json"));
+  EXPECT_EQ(again["scenes"][0]["seconds"].num(), 0);
+  for (const char* region : {"all", "nonocc"}) {
+    for (const char* key : {"bad_0.5", "bad_1", "bad_2", "avg_error", "density"}) {
+      EXPECT_EQ(again["scenes"][0][region][key].num(), json["scenes"][0][region][key].num())
+          << region << " " << key;
+    }
+  }
 }
 
 }  // namespace

@@ -8,9 +8,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +18,8 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -93,8 +92,7 @@ std::string read_bytes(const std::string& path) {
 // Checks that `action` throws InputError whose message names `path` and contains
 // `fragment`. Used as EXPECT_TRUE(throws_input_error(...)) so failures point at the call.
 testing::AssertionResult throws_input_error(const std::function<void()>& action,
-                                            const std::string& path,
-                                            const std::string& fragment) {
+                                            const std::string& path, const std::string& fragment) {
   try {
     action();
   } catch (const InputError& e) {
@@ -369,16 +367,15 @@ TEST(ImageIo, WriteImageRejectsFloatAndEmptyImages) {
   EXPECT_TRUE(throws_input_error(
       [&] { flexsight::write_image(path, cv::Mat(2, 2, CV_32FC1, cv::Scalar(0.5))); }, path,
       "unsupported bit depth 32F"));
-  EXPECT_TRUE(throws_input_error([&] { flexsight::write_image(path, cv::Mat()); }, path,
-                                 "empty"));
+  EXPECT_TRUE(throws_input_error([&] { flexsight::write_image(path, cv::Mat()); }, path, "empty"));
   EXPECT_TRUE(dir.entries().empty());
 }
 
 TEST(ImageIo, LoadRejectsMissingEmptyAndDirectory) {
   ScratchDir dir;
   const std::string missing = dir.file("missing.png");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::load_rgb8(missing); }, missing,
-                                 "does not exist"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::load_rgb8(missing); }, missing, "does not exist"));
   const std::string empty = dir.file("empty.png");
   write_bytes(empty, "");
   EXPECT_TRUE(throws_input_error([&] { flexsight::load_rgb8(empty); }, empty, "is empty"));
@@ -431,8 +428,7 @@ TEST(ImageIo, StereoPairRejectsMismatchedSizes) {
 TEST(Pfm, RoundTripLittleEndian) {
   ScratchDir dir;
   const std::string path = dir.file("disp.pfm");
-  const cv::Mat disparity =
-      (cv::Mat_<float>(2, 3) << 1.5f, kInf, -0.25f, 1e-30f, 3.4e38f, 0.0f);
+  const cv::Mat disparity = (cv::Mat_<float>(2, 3) << 1.5f, kInf, -0.25f, 1e-30f, 3.4e38f, 0.0f);
   flexsight::write_pfm(path, disparity);
 
   // Little-endian header with scale -1, bottom row first.
@@ -525,8 +521,8 @@ TEST(Pfm, ReadsMiddleburyGroundTruth) {
   ScratchDir dir;
   const std::string path = dir.file("disp0GT.pfm");
   const int width = 741, height = 497;
-  std::string bytes = "Pf\n" + std::to_string(width) + " " + std::to_string(height) +
-                      "\n-0.003922\n";
+  std::string bytes =
+      "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-0.003922\n";
   for (int i = 0; i < width * height; ++i) {
     bytes += float_bytes(i % 7 == 0 ? kInf : 1.0f + float(i % 60), true);
   }
@@ -550,8 +546,7 @@ TEST(Pfm, ReadsMiddleburyGroundTruth) {
 TEST(Pfm, RejectsMissingAndEmptyFiles) {
   ScratchDir dir;
   const std::string missing = dir.file("missing.pfm");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(missing); }, missing,
-                                 "does not exist"));
+  EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(missing); }, missing, "does not exist"));
   const std::string empty = dir.file("empty.pfm");
   write_bytes(empty, "");
   EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(empty); }, empty, "is empty"));
@@ -581,12 +576,12 @@ TEST(Pfm, RejectsNonPositiveAndMalformedDimensions) {
                                  "non-positive dimensions -4x4"));
   const std::string zero = dir.file("zero.pfm");
   write_bytes(zero, "Pf\n4 0\n-1\n");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(zero); }, zero,
-                                 "non-positive dimensions 4x0"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_pfm(zero); }, zero, "non-positive dimensions 4x0"));
   const std::string text = dir.file("text.pfm");
   write_bytes(text, "Pf\nfour 4\n-1\n" + std::string(64, '\0'));
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(text); }, text,
-                                 "malformed width 'four'"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_pfm(text); }, text, "malformed width 'four'"));
 }
 
 TEST(Pfm, RejectsZeroOrMalformedScale) {
@@ -607,16 +602,16 @@ TEST(Pfm, RejectsIncompleteHeader) {
                                  "header ends before the height"));
   const std::string no_data = dir.file("nodata.pfm");
   write_bytes(no_data, "Pf\n2 2\n-1");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(no_data); }, no_data,
-                                 "header ends without"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_pfm(no_data); }, no_data, "header ends without"));
 }
 
 TEST(Pfm, WriteRejectsUnsupportedTypes) {
   ScratchDir dir;
   const std::string path = dir.file("bytes.pfm");
-  EXPECT_TRUE(throws_input_error(
-      [&] { flexsight::write_pfm(path, cv::Mat(2, 2, CV_8UC1, cv::Scalar(1))); }, path,
-      "CV_32FC1 or CV_32FC3"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::write_pfm(path, cv::Mat(2, 2, CV_8UC1, cv::Scalar(1))); },
+                         path, "CV_32FC1 or CV_32FC3"));
   EXPECT_TRUE(dir.entries().empty());
 }
 
@@ -688,8 +683,8 @@ TEST(KittiDisparity, WriteRejectsNonFloatImage) {
   ScratchDir dir;
   const std::string path = dir.file("out.png");
   EXPECT_TRUE(throws_input_error(
-      [&] { flexsight::write_kitti_disparity(path, cv::Mat(2, 2, CV_16UC1, cv::Scalar(1))); },
-      path, "CV_32FC1"));
+      [&] { flexsight::write_kitti_disparity(path, cv::Mat(2, 2, CV_16UC1, cv::Scalar(1))); }, path,
+      "CV_32FC1"));
   EXPECT_TRUE(dir.entries().empty());
 }
 
@@ -710,7 +705,8 @@ TEST(MiddleburyV2, ReadsGroundTruth) {
   const auto datasets = datasets_dir();
   if (!datasets) return note_real_data_skipped("Middlebury v2 ground truth");
   const fs::path tsukuba = *datasets / "middlebury-v2/tsukuba";
-  const cv::Mat gt = flexsight::read_middlebury_v2_disparity((tsukuba / "groundtruth.png").string(), 16);
+  const cv::Mat gt =
+      flexsight::read_middlebury_v2_disparity((tsukuba / "groundtruth.png").string(), 16);
   EXPECT_EQ(gt.size(), cv::Size(384, 288));
   EXPECT_TRUE(finite_values_within(gt, 16));
   const cv::Mat mask = flexsight::read_mask((tsukuba / "nonocc.png").string());
@@ -740,8 +736,8 @@ TEST(MiddleburyV2, AcceptsThreeEqualChannelsRejectsColor) {
 
   const std::string color = dir.file("color.png");
   ASSERT_TRUE(cv::imwrite(color, cv::Mat(1, 2, CV_8UC3, cv::Scalar(8, 9, 8))));
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_middlebury_v2_disparity(color, 8); },
-                                 color, "channels differ"));
+  EXPECT_TRUE(throws_input_error([&] { flexsight::read_middlebury_v2_disparity(color, 8); }, color,
+                                 "channels differ"));
 }
 
 TEST(MiddleburyV2, RejectsSixteenBitAndBadScale) {
@@ -780,12 +776,12 @@ TEST(MiddleburyV2, ReadsMasks) {
 TEST(MiddleburyV2, MaskRejectsMissingAndSixteenBit) {
   ScratchDir dir;
   const std::string missing = dir.file("disc.png");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_mask(missing); }, missing,
-                                 "does not exist"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_mask(missing); }, missing, "does not exist"));
   const std::string deep = dir.file("deep.png");
   ASSERT_TRUE(cv::imwrite(deep, cv::Mat(2, 2, CV_16UC1, cv::Scalar(255))));
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_mask(deep); }, deep,
-                                 "unsupported bit depth 16U"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_mask(deep); }, deep, "unsupported bit depth 16U"));
 }
 
 // ------------------------------------------------------------------ calibration --
@@ -880,8 +876,8 @@ TEST(Calibration, MiddleburyRejectsMalformedValues) {
   for (const Case& c : cases) {
     const std::string path = dir.file(std::string("bad_") + c.key + ".txt");
     write_bytes(path, motorcycle_calib_with(c.key, c.line));
-    EXPECT_TRUE(throws_input_error([&] { flexsight::read_middlebury_calib(path); }, path,
-                                   c.problem))
+    EXPECT_TRUE(
+        throws_input_error([&] { flexsight::read_middlebury_calib(path); }, path, c.problem))
         << c.line;
   }
   const std::string twice = dir.file("twice.txt");
@@ -897,8 +893,8 @@ TEST(Calibration, MiddleburyRejectsMissingAndEmptyFiles) {
                                  "does not exist"));
   const std::string empty = dir.file("empty.txt");
   write_bytes(empty, "");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_middlebury_calib(empty); }, empty,
-                                 "is empty"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_middlebury_calib(empty); }, empty, "is empty"));
 }
 
 TEST(Calibration, ReadsKitti2012Calib) {
@@ -913,8 +909,8 @@ TEST(Calibration, ReadsKitti2012Calib) {
 
   const auto datasets = datasets_dir();
   if (!datasets) return note_real_data_skipped("KITTI calibration");
-  const flexsight::KittiCalib real = flexsight::read_kitti_calib(
-      (*datasets / "KITTI2012/training/calib/000070.txt").string());
+  const flexsight::KittiCalib real =
+      flexsight::read_kitti_calib((*datasets / "KITTI2012/training/calib/000070.txt").string());
   EXPECT_EQ(real.focal_px(), 718.856);
   EXPECT_NEAR(real.baseline_m(), 0.5372, 1e-4);
 }
@@ -936,8 +932,8 @@ TEST(Calibration, KittiRejectsMissingMatrixAndShortLines) {
   ScratchDir dir;
   const std::string no_p1 = dir.file("no_p1.txt");
   write_bytes(no_p1, "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(no_p1); }, no_p1,
-                                 "missing 'P1'"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_kitti_calib(no_p1); }, no_p1, "missing 'P1'"));
   const std::string short_line = dir.file("short.txt");
   write_bytes(short_line, "P0: 1 0 0 0 0 1 0 0 0 0 1 0\nP1: 1 0 0 -1 0 1 0 0 0 0 1\n");
   EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(short_line); }, short_line,
@@ -951,6 +947,6 @@ TEST(Calibration, KittiRejectsMissingMatrixAndShortLines) {
   EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(middlebury); }, middlebury,
                                  "missing 'P0'"));
   const std::string missing = dir.file("missing.txt");
-  EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(missing); }, missing,
-                                 "does not exist"));
+  EXPECT_TRUE(
+      throws_input_error([&] { flexsight::read_kitti_calib(missing); }, missing, "does not exist"));
 }

@@ -49,8 +49,9 @@ struct EvalOptions {
 void print_help() {
   std::cout << "usage: flexsight eval DATASET_ROOT [options] [stereo params]\n"
                "  DATASET_ROOT           MiddEval3, Middlebury v2 or KITTI training folder, or one scene\n"
-               "  --results DIR          score DIR/<scene>.pfm or DIR/<scene>/disp0*.pfm instead of\n"
-               "                         running the matcher\n"
+               "  --results DIR          score DIR/<scene>.pfm, DIR/<scene>/disp0*.pfm or\n"
+               "                         DIR/<scene>_disp.pfm (an earlier --out) instead of running\n"
+               "                         the matcher\n"
                "  --out DIR              output folder (default eval_out)\n"
                "  --scenes A,B,C         only these scenes\n"
                "  --max-disp-color N     disparity shown as the top colour (default: the scene's ndisp)\n"
@@ -127,11 +128,13 @@ std::vector<Scene> select_scenes(std::vector<Scene> scenes, const std::vector<st
   return scenes;
 }
 
-// Result files as they come from our own runs (DIR/<scene>.pfm) or from a MiddEval3
-// submission folder (DIR/<Scene>/disp0<METHOD>.pfm, disp0.pfm preferred).
+// Result files named after the scene (DIR/<scene>.pfm), laid out as a MiddEval3
+// submission folder (DIR/<Scene>/disp0<METHOD>.pfm, disp0.pfm preferred), or left by an
+// earlier eval run (DIR/<scene>_disp.pfm), so an --out folder can be re-scored.
 std::string find_result_file(const std::string& results_dir, const std::string& scene_name) {
   const fs::path dir(results_dir);
-  std::vector<fs::path> candidates = {dir / (scene_name + ".pfm"), dir / scene_name / "disp0.pfm"};
+  std::vector<fs::path> candidates = {dir / (scene_name + ".pfm"), dir / scene_name / "disp0.pfm",
+                                      dir / (scene_name + "_disp.pfm")};
   std::error_code error;
   std::vector<fs::path> others;
   for (fs::directory_iterator it(dir / scene_name, error), end; !error && it != end;
@@ -146,7 +149,8 @@ std::string find_result_file(const std::string& results_dir, const std::string& 
   }
   throw InputError(candidates.front().string(),
                    "result file not found (also looked for " +
-                       (dir / scene_name / "disp0*.pfm").string() + ")");
+                       (dir / scene_name / "disp0*.pfm").string() + " and " +
+                       candidates[2].string() + ")");
 }
 
 cv::Mat read_result(const std::string& path, const cv::Mat& ground_truth) {
@@ -196,6 +200,15 @@ void make_output_dir(const std::string& dir) {
   }
 }
 
+// Everything that can be checked cheaply is checked before the first scene is matched,
+// so a missing file does not surface only after minutes of matching.
+void check_scenes_before_running(const std::vector<Scene>& scenes, const EvalOptions& options) {
+  for (const Scene& scene : scenes) {
+    if (scene.gt_path.empty()) throw InputError(scene.left_path, "scene has no ground truth");
+    if (!options.results_dir.empty()) find_result_file(options.results_dir, scene.name);
+  }
+}
+
 SceneReport evaluate_scene(const Scene& scene, const EvalOptions& options, const std::string& tag) {
   // Ground truth first: a broken dataset fails before minutes of matching.
   const GroundTruth truth = load_ground_truth(scene);
@@ -241,6 +254,7 @@ int run_eval_command(std::vector<std::string> args) {
   const EvalOptions options = parse_options(std::move(args));
   const std::vector<Scene> scenes =
       select_scenes(discover_scenes(options.dataset_root), options.scene_names);
+  check_scenes_before_running(scenes, options);
   make_output_dir(options.out_dir);
 
   EvalReport report;

@@ -123,7 +123,7 @@ std::string json_scene(const SceneReport& scene) {
       << "      \"width\": " << scene.width << ",\n"
       << "      \"height\": " << scene.height << ",\n"
       << "      \"ndisp\": " << scene.ndisp << ",\n"
-      << "      \"seconds\": " << json_number(scene.seconds, 3) << ",\n"
+      << "      \"seconds\": " << json_number(scene.seconds) << ",\n"
       << "      \"all\": " << json_stats(scene.scores.all, "      ") << ",\n"
       << "      \"nonocc\": " << json_stats(scene.scores.nonocc, "      ") << "\n"
       << "    }";
@@ -176,7 +176,7 @@ std::string to_json(const EvalReport& report) {
   }
   out << (report.scenes.empty() ? "],\n" : "\n  ],\n");
   out << "  \"average\": {\n"
-      << "    \"seconds\": " << json_number(report.average_seconds(), 3) << ",\n"
+      << "    \"seconds\": " << json_number(report.average_seconds()) << ",\n"
       << "    \"all\": " << json_stats(report.average_all(), "    ") << ",\n"
       << "    \"nonocc\": " << json_stats(report.average_nonocc(), "    ") << "\n"
       << "  }\n"

@@ -47,8 +47,8 @@ void write_atomically(const std::string& path,
   fs::rename(tmp_path, path, ec);
   if (ec) {
     remove_quietly(tmp_path);
-    throw InputError(path, "cannot be written (renaming the temporary file failed: " +
-                               ec.message() + ")");
+    throw InputError(
+        path, "cannot be written (renaming the temporary file failed: " + ec.message() + ")");
   }
 }
 

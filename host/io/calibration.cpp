@@ -118,8 +118,8 @@ class MiddleburyFields {
     const std::size_t eq = line.find('=');
     const std::string key = eq == std::string::npos ? "" : trim(line.substr(0, eq));
     if (key.empty()) {
-      throw InputError(path_, "line " + std::to_string(number) + " is not 'key=value': " +
-                                  quoted(line));
+      throw InputError(path_,
+                       "line " + std::to_string(number) + " is not 'key=value': " + quoted(line));
     }
     if (!values_.emplace(key, trim(line.substr(eq + 1))).second) {
       throw InputError(path_, "key '" + key + "' appears more than once");
@@ -182,8 +182,8 @@ std::array<double, 12> kitti_matrix(const std::vector<std::string>& lines,
     if (!(p[0] > 0)) throw InputError(path, "line '" + key + "' has a focal length <= 0");
   }
   if (!found) {
-    throw InputError(path, std::string("missing '") + name.kitti2012 + "' (or '" +
-                               name.rectified + "') projection matrix");
+    throw InputError(path, std::string("missing '") + name.kitti2012 + "' (or '" + name.rectified +
+                               "') projection matrix");
   }
   return p;
 }

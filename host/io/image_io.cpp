@@ -1,9 +1,9 @@
 #include "host/io/image_io.h"
 
+#include <cstdint>
+#include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-
-#include <cstdint>
 
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
@@ -33,12 +33,18 @@ cv::Mat to_8bit(const cv::Mat& image16) {
 cv::Mat to_rgb(const cv::Mat& image8, const std::string& path) {
   cv::Mat rgb;
   switch (image8.channels()) {
-    case 1: cv::cvtColor(image8, rgb, cv::COLOR_GRAY2RGB); break;
-    case 3: cv::cvtColor(image8, rgb, cv::COLOR_BGR2RGB); break;
-    case 4: cv::cvtColor(image8, rgb, cv::COLOR_BGRA2RGB); break;  // alpha dropped
+    case 1:
+      cv::cvtColor(image8, rgb, cv::COLOR_GRAY2RGB);
+      break;
+    case 3:
+      cv::cvtColor(image8, rgb, cv::COLOR_BGR2RGB);
+      break;
+    case 4:  // alpha is dropped
+      cv::cvtColor(image8, rgb, cv::COLOR_BGRA2RGB);
+      break;
     default:
-      throw InputError(path, "has " + std::to_string(image8.channels()) +
-                                 " channels (expected 1, 3 or 4)");
+      throw InputError(
+          path, "has " + std::to_string(image8.channels()) + " channels (expected 1, 3 or 4)");
   }
   return rgb;
 }
@@ -47,12 +53,16 @@ cv::Mat to_rgb(const cv::Mat& image8, const std::string& path) {
 cv::Mat to_bgr_for_writing(const cv::Mat& image, const std::string& path) {
   cv::Mat bgr;
   switch (image.channels()) {
-    case 1: return image;
-    case 3: cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR); return bgr;
-    case 4: cv::cvtColor(image, bgr, cv::COLOR_RGBA2BGRA); return bgr;
+    case 1:
+      return image;
+    case 3:
+      cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
+      return bgr;
+    case 4:
+      cv::cvtColor(image, bgr, cv::COLOR_RGBA2BGRA);
+      return bgr;
     default:
-      throw InputError(path, "cannot be written: image has " +
-                                 std::to_string(image.channels()) +
+      throw InputError(path, "cannot be written: image has " + std::to_string(image.channels()) +
                                  " channels (expected 1, 3 or 4)");
   }
 }
@@ -64,8 +74,8 @@ cv::Mat load_rgb8(const std::string& path) {
   if (image.depth() == CV_16U) {
     image = to_8bit(image);
   } else if (image.depth() != CV_8U) {
-    throw InputError(path, "unsupported bit depth " + depth_name(image.depth()) +
-                               " (expected 8- or 16-bit)");
+    throw InputError(
+        path, "unsupported bit depth " + depth_name(image.depth()) + " (expected 8- or 16-bit)");
   }
   return to_rgb(image, path);
 }
@@ -89,6 +99,11 @@ void write_image(const std::string& path, const cv::Mat& image_rgb) {
     throw InputError(path, "cannot be written: unsupported bit depth " +
                                depth_name(image_rgb.depth()) + " (expected 8- or 16-bit)");
   }
+  // Checked up front so the user reads this rather than OpenCV's exception text.
+  if (!cv::haveImageWriter(path)) {
+    throw InputError(path, "cannot be written: no image encoder for the extension '" +
+                               std::filesystem::path(path).extension().string() + "'");
+  }
   const cv::Mat bgr = to_bgr_for_writing(image_rgb, path);
 
   write_atomically(path, [&](const std::string& tmp_path) {
@@ -96,8 +111,7 @@ void write_image(const std::string& path, const cv::Mat& image_rgb) {
     try {
       written = cv::imwrite(tmp_path, bgr);
     } catch (const cv::Exception& e) {
-      // E.g. "could not find a writer for the specified extension".
-      throw InputError(path, "cannot be encoded (" + e.msg + ")");
+      throw InputError(path, "cannot be encoded (" + e.err + ")");
     }
     if (!written) {
       throw InputError(path, "cannot be written (encoder failed or folder not writable)");

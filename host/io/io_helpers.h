@@ -1,12 +1,11 @@
 #pragma once
 // Internal helpers shared by the readers in host/io (not part of the public API).
 // Header-only so that the list of sources in CMakeLists.txt stays as it is.
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
 
@@ -45,15 +44,24 @@ inline std::string read_whole_file(const std::string& path) {
 // "8U", "16U", "32F", ... as users see them in OpenCV messages.
 inline std::string depth_name(int depth) {
   switch (depth) {
-    case CV_8U: return "8U";
-    case CV_8S: return "8S";
-    case CV_16U: return "16U";
-    case CV_16S: return "16S";
-    case CV_32S: return "32S";
-    case CV_32F: return "32F";
-    case CV_64F: return "64F";
-    case CV_16F: return "16F";
-    default: return "depth " + std::to_string(depth);
+    case CV_8U:
+      return "8U";
+    case CV_8S:
+      return "8S";
+    case CV_16U:
+      return "16U";
+    case CV_16S:
+      return "16S";
+    case CV_32S:
+      return "32S";
+    case CV_32F:
+      return "32F";
+    case CV_64F:
+      return "64F";
+    case CV_16F:
+      return "16F";
+    default:
+      return "depth " + std::to_string(depth);
   }
 }
 
@@ -75,7 +83,7 @@ inline cv::Mat imread_unchanged(const std::string& path) {
   try {
     image = cv::imread(path, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
-    throw InputError(path, "cannot be decoded as an image (" + e.msg + ")");
+    throw InputError(path, "cannot be decoded as an image (" + e.err + ")");
   }
   if (image.empty()) throw InputError(path, "cannot be decoded as an image");
   return image;

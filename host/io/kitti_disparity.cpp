@@ -1,12 +1,11 @@
 #include "host/io/kitti_disparity.h"
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "host/io/atomic_file.h"
@@ -62,8 +61,9 @@ cv::Mat read_kitti_disparity(const std::string& path) {
 
 void write_kitti_disparity(const std::string& path, const cv::Mat& disparity) {
   if (disparity.empty() || disparity.type() != CV_32FC1) {
-    throw InputError(path, "cannot be written as a KITTI disparity map: expected a "
-                           "non-empty CV_32FC1 image, got " + io_detail::describe(disparity));
+    const std::string got = disparity.empty() ? "an empty image" : io_detail::describe(disparity);
+    throw InputError(path,
+                     "cannot be written as a KITTI disparity map: expected CV_32FC1, got " + got);
   }
   cv::Mat png(disparity.size(), CV_16UC1);
   for (int y = 0; y < disparity.rows; ++y) {

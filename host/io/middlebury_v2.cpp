@@ -25,8 +25,8 @@ cv::Mat read_gray8(const std::string& path, const char* what) {
 
 cv::Mat read_middlebury_v2_disparity(const std::string& path, double scale) {
   if (!(scale > 0) || !std::isfinite(scale)) {
-    throw InputError(path, "disparity scale must be a positive number, got " +
-                               std::to_string(scale));
+    throw InputError(path,
+                     "disparity scale must be a positive number, got " + std::to_string(scale));
   }
   const cv::Mat gray = read_gray8(path, "a Middlebury v2 disparity map");
 
@@ -42,8 +42,6 @@ cv::Mat read_middlebury_v2_disparity(const std::string& path, double scale) {
   return disparity;
 }
 
-cv::Mat read_mask(const std::string& path) {
-  return read_gray8(path, "a mask");
-}
+cv::Mat read_mask(const std::string& path) { return read_gray8(path, "a mask"); }
 
 }  // namespace flexsight

@@ -16,9 +16,7 @@
 namespace flexsight {
 namespace {
 
-bool is_space(char c) {
-  return std::isspace(static_cast<unsigned char>(c)) != 0;
-}
+bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
 // Header tokens in a PFM file are separated by whitespace; some writers also add
 // "# ..." comment lines (as in PNM), which we skip.
@@ -77,8 +75,8 @@ long long parse_dimension(const std::string& token, const char* what, const std:
   const char* end = token.data() + token.size();
   const auto [ptr, ec] = std::from_chars(token.data(), end, value);
   if (ec != std::errc() || ptr != end) {
-    throw InputError(path, std::string("has a malformed ") + what + " '" + printable(token) +
-                               "' in its header");
+    throw InputError(
+        path, std::string("has a malformed ") + what + " '" + printable(token) + "' in its header");
   }
   return value;
 }
@@ -98,12 +96,11 @@ double parse_scale(const std::string& token, const std::string& path) {
 
 // Decoding through an integer makes the result independent of the host's byte order.
 float decode_float(const unsigned char* b, bool little_endian) {
-  const std::uint32_t bits =
-      little_endian
-          ? std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 |
-                std::uint32_t{b[3]} << 24
-          : std::uint32_t{b[3]} | std::uint32_t{b[2]} << 8 | std::uint32_t{b[1]} << 16 |
-                std::uint32_t{b[0]} << 24;
+  const std::uint32_t bits = little_endian
+                                 ? std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 |
+                                       std::uint32_t{b[2]} << 16 | std::uint32_t{b[3]} << 24
+                                 : std::uint32_t{b[3]} | std::uint32_t{b[2]} << 8 |
+                                       std::uint32_t{b[1]} << 16 | std::uint32_t{b[0]} << 24;
   float value;
   std::memcpy(&value, &bits, sizeof value);
   return value;
@@ -133,8 +130,8 @@ PfmHeader parse_header(const std::string& bytes, const std::string& path) {
   } else if (magic == "PF") {
     header.channels = 3;
   } else {
-    throw InputError(path, "is not a PFM file (magic '" + printable(magic) +
-                               "', expected 'Pf' or 'PF')");
+    throw InputError(path,
+                     "is not a PFM file (magic '" + printable(magic) + "', expected 'Pf' or 'PF')");
   }
 
   const long long width = parse_dimension(reader.next_token("width"), "width", path);
@@ -166,9 +163,8 @@ void check_data_length(const PfmHeader& header, std::size_t available, const std
                                  ? std::to_string(rows * row_bytes)
                                  : "too many";
   throw InputError(path, "header says " + std::to_string(header.width) + "x" +
-                             std::to_string(header.height) + "x" +
-                             std::to_string(header.channels) + " (" + needed +
-                             " bytes) but only " + std::to_string(available) +
+                             std::to_string(header.height) + "x" + std::to_string(header.channels) +
+                             " (" + needed + " bytes) but only " + std::to_string(available) +
                              " bytes of data follow");
 }
 
@@ -195,15 +191,17 @@ cv::Mat read_pfm(const std::string& path) {
     // PFM stores the bottom row first.
     auto* dst = image.ptr<float>(header.height - 1 - file_row);
     const unsigned char* src = data + std::size_t(file_row) * values_per_row * 4;
-    for (int i = 0; i < values_per_row; ++i) dst[i] = decode_float(src + 4 * i, header.little_endian);
+    for (int i = 0; i < values_per_row; ++i) {
+      dst[i] = decode_float(src + 4 * i, header.little_endian);
+    }
   }
   return image;
 }
 
 void write_pfm(const std::string& path, const cv::Mat& image) {
   if (image.empty() || (image.type() != CV_32FC1 && image.type() != CV_32FC3)) {
-    throw InputError(path, "cannot be written as PFM: expected a non-empty CV_32FC1 or "
-                           "CV_32FC3 image, got " + io_detail::describe(image));
+    const std::string got = image.empty() ? "an empty image" : io_detail::describe(image);
+    throw InputError(path, "cannot be written as PFM: expected CV_32FC1 or CV_32FC3, got " + got);
   }
   const std::string header = std::string(image.channels() == 1 ? "Pf" : "PF") + "\n" +
                              std::to_string(image.cols) + " " + std::to_string(image.rows) +

@@ -1,0 +1,147 @@
+// The flexsight binary end to end: bad input gives a clear message naming the file or
+// option and a non-zero exit, and never leaves an output file behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "host/io/pfm.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using flexsight::testing_support::fresh_temp_dir;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+RunResult run_flexsight(const std::string& arguments, const fs::path& dir) {
+  const std::string command = std::string(FLEXSIGHT_BINARY) + " " + arguments + " > " +
+                              (dir / "stdout.txt").string() + " 2> " + (dir / "stderr.txt").string();
+  int status = std::system(command.c_str());
+  RunResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(dir / "stdout.txt");
+  result.err = slurp(dir / "stderr.txt");
+  return result;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    left_ = (dir_ / "left.png").string();
+    right_ = (dir_ / "right.png").string();
+    cv::imwrite(left_, flexsight::testing_support::random_rgb8(64, 48, 1));
+    cv::imwrite(right_, flexsight::testing_support::random_rgb8(64, 48, 2));
+    output_ = (dir_ / "disp.pfm").string();
+  }
+  // Runs a command that must fail; checks exit code, message and that no output exists.
+  void expect_rejected(const std::string& arguments, const std::string& must_mention) {
+    RunResult r = run_flexsight(arguments, dir_);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output_));
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+          << "left behind: " << entry.path();
+    }
+  }
+  std::string quick() const { return " --window 7 --iterations 1 --iterations-fine 1 --quiet"; }
+  fs::path dir_;
+  std::string left_, right_, output_;
+};
+
+}  // namespace
+
+TEST_F(Cli, MatchesAPairAndWritesPfmAndPng) {
+  const std::string png = (dir_ / "disp.png").string();
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ + " --png " +
+                                  png + " --ndisp 16" + quick(),
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cv::Mat disparity = flexsight::read_pfm(output_);
+  EXPECT_EQ(disparity.size(), cv::Size(64, 48));
+  EXPECT_EQ(cv::imread(png).size(), cv::Size(64, 48));
+  EXPECT_NE(r.out.find("| total |"), std::string::npos);  // time per stage
+}
+
+TEST_F(Cli, SceneFolderReadsNdispFromCalibAndScoresAgainstGroundTruth) {
+  RunResult r = run_flexsight("stereo " + flexsight::testing_support::fixture_dir() + " -o " +
+                                  output_ + " --window 11 --iterations 1 --iterations-fine 1",
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("ndisp 32 from calib.txt"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("| nonocc |"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("level 0"), std::string::npos) << "progress is shown";
+}
+
+TEST_F(Cli, RejectsAMissingImage) {
+  const std::string missing = (dir_ / "nope.png").string();
+  expect_rejected("stereo " + missing + " " + right_ + " -o " + output_, missing);
+}
+
+TEST_F(Cli, RejectsACorruptImage) {
+  std::ofstream(dir_ / "corrupt.png") << "this is not a png";
+  const std::string corrupt = (dir_ / "corrupt.png").string();
+  expect_rejected("stereo " + left_ + " " + corrupt + " -o " + output_, corrupt);
+}
+
+TEST_F(Cli, RejectsAnEmptyImageFile) {
+  std::ofstream(dir_ / "empty.png").close();
+  const std::string empty = (dir_ / "empty.png").string();
+  expect_rejected("stereo " + empty + " " + right_ + " -o " + output_, empty);
+}
+
+TEST_F(Cli, RejectsMismatchedSizes) {
+  const std::string small = (dir_ / "small.png").string();
+  cv::imwrite(small, flexsight::testing_support::random_rgb8(60, 48, 3));
+  expect_rejected("stereo " + left_ + " " + small + " -o " + output_, small);
+}
+
+TEST_F(Cli, RejectsAnUnsupportedBitDepth) {
+  const std::string floats = (dir_ / "float.tiff").string();
+  cv::imwrite(floats, cv::Mat(48, 64, CV_32FC1, cv::Scalar(0.5)));
+  expect_rejected("stereo " + left_ + " " + floats + " -o " + output_, floats);
+}
+
+TEST_F(Cli, RejectsImpossibleParameters) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " -o " + output_;
+  expect_rejected(pair + " --ndisp 0", "--ndisp");
+  expect_rejected(pair + " --ndisp -5", "--ndisp");
+  expect_rejected(pair + " --ndisp 65", "--ndisp");  // wider than the 64-px image
+  expect_rejected(pair + " --window 8", "--window");
+  expect_rejected(pair + " --alpha 1.5", "--alpha");
+  expect_rejected(pair + " --ndisp twelve", "--ndisp");
+}
+
+TEST_F(Cli, RejectsUnknownOptionsAndCommands) {
+  expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --bogus 3", "--bogus");
+  RunResult r = run_flexsight("frobnicate", dir_);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("frobnicate"), std::string::npos);
+}
+
+TEST_F(Cli, RejectsAnOutputInAMissingFolderWithoutLeavingFiles) {
+  const std::string bad_output = (dir_ / "no_such_dir" / "disp.pfm").string();
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + bad_output +
+                                  " --ndisp 16" + quick(),
+                              dir_);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find(bad_output), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "no_such_dir"));
+}

@@ -1,0 +1,155 @@
+// The adaptive-support-weighted matching cost against hand-computed values and against
+// an independent double-precision implementation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fallback/image_pyramid.h"
+#include "fallback/weight_table.h"
+#include "kernels/pms_math.h"
+#include "test_support.h"
+
+using namespace flexsight;
+
+namespace {
+
+ViewImage grey_row(std::initializer_list<float> values) {
+  cv::Mat rgb(1, static_cast<int>(values.size()), CV_8UC3);
+  int x = 0;
+  for (float v : values) rgb.at<cv::Vec3b>(0, x++) = cv::Vec3b(v, v, v);
+  return make_view_image(rgb);
+}
+
+PmsCostParams params(int radius, int step, float tau_color, float tau_gradient) {
+  return {radius, step, 0.9f, 1.0f - 0.9f, tau_color, tau_gradient};
+}
+
+float cost(const ViewImage& ref, const ViewImage& other, const std::vector<float>& weights,
+           PmsCostParams p, int x, int y, float a, float b, float c, float direction,
+           float bound = std::numeric_limits<float>::max()) {
+  return pms_plane_cost(ref.color.data(), ref.gradient.data(), other.color.data(),
+                        other.gradient.data(), weights.data(), ref.width, ref.height, p, x, y, a,
+                        b, c, direction, bound);
+}
+
+// Independent implementation in double precision, with explicit loops over the whole
+// window and a skip for outside pixels.
+double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma, PmsCostParams p,
+                      int px, int py, double a, double b, double c, double direction) {
+  double sum = 0;
+  const float* centre = &ref.color[4 * (py * ref.width + px)];
+  for (int dy = -p.radius; dy <= p.radius; ++dy) {
+    for (int dx = -p.radius; dx <= p.radius; ++dx) {
+      if (dx % p.step != 0 || dy % p.step != 0) continue;
+      int qx = px + dx, qy = py + dy;
+      if (qx < 0 || qy < 0 || qx >= ref.width || qy >= ref.height) continue;
+      const float* q = &ref.color[4 * (qy * ref.width + qx)];
+      double weight = std::exp(-(std::fabs(centre[0] - q[0]) + std::fabs(centre[1] - q[1]) +
+                                 std::fabs(centre[2] - q[2])) / gamma);
+      double mx = qx + direction * (a * qx + b * qy + c);
+      mx = std::min(std::max(mx, 0.0), ref.width - 1.0);
+      int x0 = static_cast<int>(std::floor(mx));
+      int x1 = std::min(x0 + 1, ref.width - 1);
+      double t = mx - x0;
+      double color = 0, grad = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        double m = (1 - t) * other.color[4 * (qy * ref.width + x0) + ch] +
+                   t * other.color[4 * (qy * ref.width + x1) + ch];
+        color += std::fabs(q[ch] - m);
+      }
+      for (int ch = 0; ch < 2; ++ch) {
+        double m = (1 - t) * other.gradient[2 * (qy * ref.width + x0) + ch] +
+                   t * other.gradient[2 * (qy * ref.width + x1) + ch];
+        grad += std::fabs(ref.gradient[2 * (qy * ref.width + qx) + ch] - m);
+      }
+      sum += weight * (0.1 * std::min(color, static_cast<double>(p.tau_color)) +
+                       0.9 * std::min(grad, static_cast<double>(p.tau_gradient)));
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST(MatchingCost, HandComputedTruncatedCase) {
+  // Left grey 10 20 40, right grey 0 30 60; plane d = 0.5 at pixel 1, window 3x1.
+  // Gradients (central differences, clamped): left 5 15 10, right 15 30 15.
+  // q=0: match x = -0.5 -> 0: colour 3*10 -> tau 10, gradient |5-15| -> tau 2: 2.8,
+  //      weight exp(-30/10).
+  // q=1: match 0.5: colour 3*|20-15| -> 10, gradient |15-22.5| -> 2: 2.8, weight 1.
+  // q=2: match 1.5: colour 3*|40-45| -> 10, gradient |10-22.5| -> 2: 2.8, weight exp(-6).
+  ViewImage left = grey_row({10, 20, 40});
+  ViewImage right = grey_row({0, 30, 60});
+  auto weights = make_support_weight_table(10.0f);
+  float got = cost(left, right, weights, params(1, 1, 10.0f, 2.0f), 1, 0, 0, 0, 0.5f, -1.0f);
+  EXPECT_NEAR(got, 2.8 * (std::exp(-3.0) + 1.0 + std::exp(-6.0)), 1e-5);
+}
+
+TEST(MatchingCost, HandComputedUntruncatedCase) {
+  // Same pair without truncation: q=0: 0.1*30 + 0.9*10 = 12; q=1: 0.1*15 + 0.9*7.5 =
+  // 8.25; q=2: 0.1*15 + 0.9*12.5 = 12.75.
+  ViewImage left = grey_row({10, 20, 40});
+  ViewImage right = grey_row({0, 30, 60});
+  auto weights = make_support_weight_table(10.0f);
+  float got = cost(left, right, weights, params(1, 1, 100.0f, 100.0f), 1, 0, 0, 0, 0.5f, -1.0f);
+  EXPECT_NEAR(got, 12.0 * std::exp(-3.0) + 8.25 + 12.75 * std::exp(-6.0), 1e-4);
+}
+
+TEST(MatchingCost, ZeroForTheTrueShift) {
+  // Left pixel x shows scene point x, right pixel x' shows x' + 3: with d = 3 every
+  // matched pixel away from the border compares equal values.
+  cv::Mat big = testing_support::random_rgb8(40, 12, 5);
+  cv::Mat left_rgb = big(cv::Rect(0, 0, 30, 12)).clone();
+  cv::Mat right_rgb = big(cv::Rect(3, 0, 30, 12)).clone();
+  ViewImage left = make_view_image(left_rgb), right = make_view_image(right_rgb);
+  auto weights = make_support_weight_table(10.0f);
+  // Gradients at the image border use one-sided neighbours, so stay 2 px inside.
+  EXPECT_EQ(cost(left, right, weights, params(3, 1, 10, 2), 15, 6, 0, 0, 3.0f, -1.0f), 0.0f);
+  EXPECT_GT(cost(left, right, weights, params(3, 1, 10, 2), 15, 6, 0, 0, 4.0f, -1.0f), 1.0f);
+  // And the right view matches at x + d.
+  EXPECT_EQ(cost(right, left, weights, params(3, 1, 10, 2), 12, 6, 0, 0, 3.0f, 1.0f), 0.0f);
+}
+
+TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
+  const int w = 23, h = 17;
+  ViewImage left = make_view_image(testing_support::random_rgb8(w, h, 1));
+  ViewImage right = make_view_image(testing_support::random_rgb8(w, h, 2));
+  auto weights = make_support_weight_table(10.0f);
+  for (int step : {1, 2, 3}) {
+    for (int radius : {1, 4, 7}) {
+      PmsCostParams p = params(radius, step, 10.0f, 2.0f);
+      for (int y : {0, 3, h - 1}) {
+        for (int x : {0, 1, 11, w - 2, w - 1}) {
+          for (float direction : {-1.0f, 1.0f}) {
+            double expected = reference_cost(left, right, 10.0, p, x, y, 0.07, -0.05, 4.3, direction);
+            float got = cost(left, right, weights, p, x, y, 0.07f, -0.05f, 4.3f, direction);
+            EXPECT_NEAR(got, expected, 1e-4 * std::max(1.0, expected))
+                << "step " << step << " radius " << radius << " at " << x << "," << y;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MatchingCost, BoundStopsEarlyButNeverBelowTheBound) {
+  const int w = 40, h = 30;
+  ViewImage left = make_view_image(testing_support::random_rgb8(w, h, 3));
+  ViewImage right = make_view_image(testing_support::random_rgb8(w, h, 4));
+  auto weights = make_support_weight_table(10.0f);
+  PmsCostParams p = params(8, 2, 10.0f, 2.0f);
+  float full = cost(left, right, weights, p, 20, 15, 0.0f, 0.0f, 5.0f, -1.0f);
+  EXPECT_EQ(cost(left, right, weights, p, 20, 15, 0.0f, 0.0f, 5.0f, -1.0f, full * 2), full);
+  float stopped = cost(left, right, weights, p, 20, 15, 0.0f, 0.0f, 5.0f, -1.0f, full * 0.25f);
+  EXPECT_GE(stopped, full * 0.25f);
+  EXPECT_LT(stopped, full);
+}
+
+TEST(WeightTable, MatchesExpAndIsMonotone) {
+  auto weights = make_support_weight_table(10.0f);
+  ASSERT_EQ(weights.size(), static_cast<size_t>(PMS_WEIGHT_TABLE_SIZE));
+  EXPECT_EQ(weights[0], 1.0f);
+  EXPECT_FLOAT_EQ(weights[10], static_cast<float>(std::exp(-1.0)));
+  for (size_t k = 1; k < weights.size(); ++k) EXPECT_LE(weights[k], weights[k - 1]);
+}

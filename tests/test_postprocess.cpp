@@ -1,0 +1,101 @@
+// Post-processing stages: left/right check, background filling, weighted median.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "fallback/postprocess_reference.h"
+#include "fallback/weight_table.h"
+#include "kernels/postprocess_math.h"
+#include "test_support.h"
+
+using namespace flexsight;
+
+TEST(LeftRightCheck, AcceptsAgreementAndRejectsOcclusionAndOutside) {
+  // One row of 6 pixels. Left disparity 2 everywhere but pixel 4 (d = 0.4); the right
+  // view says 2 everywhere but right pixel 1 (d = 5).
+  std::vector<float> left = {2, 2, 2, 2, 0.4f, 2};
+  std::vector<float> right = {2, 5, 2, 2, 2, 2};
+  auto ok = left_right_check(left, right, 6, 1, 1.0f, 1);
+  // x=0,1: match x - 2 < 0 -> outside; x=2: right[0]=2 ok; x=3: right[1]=5 bad;
+  // x=4: round(3.6)=4, |0.4-2| > 1 bad; x=5: right[3]=2 ok.
+  EXPECT_EQ(ok, (std::vector<std::uint8_t>{0, 0, 1, 0, 0, 1}));
+}
+
+TEST(FillInconsistent, TakesTheLowerOfTheNearestValidPlanes) {
+  // Row of 5: valid pixels 0 (plane d = 10) and 4 (plane d = 3 + 0.5 x); pixel 2
+  // between them takes d = min(10, 4) -> the right one; pixel 1 likewise.
+  std::vector<float> planes(4 * 5, 0.0f);
+  planes[2] = 10.0f;
+  planes[4 * 4 + 0] = 0.5f;
+  planes[4 * 4 + 2] = 3.0f;
+  std::vector<std::uint8_t> ok = {1, 0, 0, 0, 1};
+  auto filled = fill_inconsistent(planes, ok, 5, 1, 1);
+  for (int x = 1; x <= 3; ++x) {
+    EXPECT_EQ(filled[4 * x], 0.5f) << x;
+    EXPECT_EQ(filled[4 * x + 2], 3.0f) << x;
+  }
+  EXPECT_EQ(filled[2], 10.0f);  // valid pixels keep their plane
+}
+
+TEST(FillInconsistent, UsesTheOnlySideThereIsOrKeepsItsOwn) {
+  std::vector<float> planes = {0, 0, 7, 0, 0, 0, 8, 0, 0, 0, 9, 0};
+  auto one_side = fill_inconsistent(planes, {0, 0, 1}, 3, 1, 1);
+  EXPECT_EQ(one_side[2], 9.0f);
+  EXPECT_EQ(one_side[6], 9.0f);
+  auto none = fill_inconsistent(planes, {0, 0, 0}, 3, 1, 1);
+  EXPECT_EQ(none, planes);
+}
+
+TEST(WeightedMedian, MatchesTheDefinitionOnRandomSamples) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> value(0, 50), weight(0, 1);
+  for (int round = 0; round < 200; ++round) {
+    int n = 1 + round % 40;
+    std::vector<float> values(n), weights(n);
+    for (int i = 0; i < n; ++i) {
+      values[i] = std::floor(value(rng) * 4) / 4;  // ties on purpose
+      weights[i] = weight(rng);
+    }
+    std::vector<float> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    float got = pms_weighted_median(values.data(), weights.data(), sorted.data(), n);
+    // Definition: smallest sample value whose cumulative weight reaches half the total.
+    double total = 0;
+    for (float w : weights) total += w;
+    float expected = sorted.back();
+    for (float v : sorted) {
+      double below = 0;
+      for (int i = 0; i < n; ++i)
+        if (values[i] <= v) below += weights[i];
+      if (below >= total / 2 - 1e-6) {
+        expected = v;
+        break;
+      }
+    }
+    EXPECT_EQ(got, expected) << "round " << round;
+  }
+}
+
+TEST(WeightedMedian, FilterTouchesOnlyInconsistentPixels) {
+  const int w = 9, h = 7;
+  ViewImage image = make_view_image(cv::Mat(h, w, CV_8UC3, cv::Scalar(50, 50, 50)));
+  std::vector<float> disparity(w * h, 4.0f);
+  disparity[3 * w + 4] = 30.0f;  // an outlier, inconsistent
+  disparity[0] = 31.0f;          // an outlier, but consistent: kept
+  std::vector<std::uint8_t> ok(w * h, 1);
+  ok[3 * w + 4] = 0;
+  auto weights = make_support_weight_table(10.0f);
+  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 1);
+  EXPECT_EQ(out[3 * w + 4], 4.0f);
+  EXPECT_EQ(out[0], 31.0f);
+}
+
+TEST(Confidence, IsOneOverOnePlusDisagreement) {
+  std::vector<float> left = {0, 0, 3, 3};
+  std::vector<float> right = {1, 0, 0, 0};
+  // x=2: d=3 -> right x=-1 outside: 0; x=3: right[0]=1 -> 1/(1+2).
+  EXPECT_EQ(pms_confidence(left.data(), right.data(), 4, 2, 0, -1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(pms_confidence(left.data(), right.data(), 4, 3, 0, -1.0f), 1.0f / 3.0f);
+  EXPECT_EQ(pms_confidence(left.data(), right.data(), 4, 1, 0, -1.0f), 1.0f);
+}
