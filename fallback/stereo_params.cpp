@@ -29,6 +29,8 @@ void StereoParams::check() const {
           "must be in 0..100");
   require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
           "must be positive");
+  require(std::isfinite(fine_search_range) && fine_search_range > 0, "fine-search-range",
+          "must be positive");
   require(std::isfinite(confident_threshold) && confident_threshold >= 0, "confident-threshold",
           "must be >= 0 (above 1 disables the confidence rule)");
   require(std::isfinite(confident_max_range) && confident_max_range >= 0, "confident-max-range",

@@ -32,6 +32,10 @@ struct StereoParams {
   // Random search: trial k perturbs the disparity by up to (ndisp_level / 2) / 2^k;
   // trials continue while that range is at least min_search_range pixels.
   float min_search_range = 0.25f;
+  // PPMS: on the levels below the coarsest the random search starts at this range
+  // (pixels of that level) instead of half the disparity range: the carried planes are
+  // already close, and wide jumps only let textureless areas drift.
+  float fine_search_range = 8.0f;
   // PPMS: where the coarser level's confidence C = 1/(1+|dL-dR|) reaches
   // confident_threshold, trials with a range above confident_max_range are skipped,
   // since the carried plane is already within a pixel or two of the answer.

@@ -128,6 +128,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
 
     SearchSchedule schedule;
     schedule.initial_range = 0.5f * static_cast<float>(in.ndisp);
+    if (!coarsest) schedule.initial_range = std::min(schedule.initial_range, params.fine_search_range);
     schedule.normal_range = params.max_normal_delta;
     schedule.min_range = params.min_search_range;
     schedule.confident_threshold = params.confident_threshold;

@@ -70,6 +70,8 @@ const std::vector<ParamOption>& param_options() {
       integer_option("iterations", "iterations on the coarsest (or only) level", &StereoParams::iterations),
       integer_option("iterations-fine", "iterations on finer PPMS levels", &StereoParams::iterations_fine),
       float_option("min-search-range", "smallest random-search range (px)", &StereoParams::min_search_range),
+      float_option("fine-search-range", "PPMS: first random-search range below the coarsest level (px)",
+                   &StereoParams::fine_search_range),
       float_option("confident-threshold", "confidence from which search is reduced",
                    &StereoParams::confident_threshold),
       float_option("confident-max-range", "largest search range for confident pixels (px)",

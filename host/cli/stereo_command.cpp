@@ -29,6 +29,7 @@ void print_help() {
                "when present, disp0GT.pfm and mask0nocc.png as ground truth.\n"
                "  -o DISP.pfm                 output disparity (left view, PFM)\n"
                "  --png COLOR.png             colored disparity picture\n"
+               "  --raw RAW.pfm               left disparity before post-processing (PFM)\n"
                "  --gt GT.pfm                 ground truth: print bad-N and average error\n"
                "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
                "  --device reference|auto     matcher backend (this build: reference)\n"
@@ -111,6 +112,7 @@ int run_stereo_command(std::vector<std::string> args) {
   std::string output = take_option(args, "-o");
   if (output.empty()) output = take_option(args, "--output");
   const std::string png = take_option(args, "--png");
+  const std::string raw = take_option(args, "--raw");
   std::string gt = take_option(args, "--gt");
   std::string gt_mask = take_option(args, "--gt-mask");
   std::string device = take_option(args, "--device");
@@ -138,6 +140,7 @@ int run_stereo_command(std::vector<std::string> args) {
   const StereoResult result = run_stereo(pair.left, pair.right, params, progress);
 
   write_pfm(output, result.disparity);
+  if (!raw.empty()) write_pfm(raw, result.raw_left);
   if (!png.empty()) {
     write_image(png, colorize_disparity(result.disparity, static_cast<float>(params.ndisp)));
   }

@@ -1,0 +1,46 @@
+#pragma once
+// One device with its context, an in-order queue with profiling (event timings cost
+// next to nothing and make --profile possible without a second code path), and the
+// programs built for it.
+#include <string>
+
+#include "host/opencl/cl_device.h"
+#include "host/opencl/cl_handle.h"
+#include "host/opencl/cl_program.h"
+
+namespace flexsight::opencl {
+
+class Context {
+ public:
+  // Throws OpenClError when the context or queue cannot be created.
+  explicit Context(const DeviceInfo& device);
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  // Waits for the queue (errors ignored: destructors never throw).
+  ~Context();
+
+  const DeviceInfo& device() const { return device_; }
+  cl_context context() const { return context_.get(); }
+  cl_command_queue queue() const { return queue_.get(); }
+  // Largest work-group size and per-dimension work-item counts of the device.
+  size_t max_work_group_size() const { return max_work_group_size_; }
+  size_t max_work_item_size(int dimension) const { return max_work_item_sizes_[dimension]; }
+
+  cl_program program(const KernelSource& source, const std::string& extra_options = {}) {
+    return programs_.get(context_.get(), device_, source, extra_options);
+  }
+  const ProgramCache& programs() const { return programs_; }
+
+  // Blocks until every enqueued command has finished; throws on a failed command.
+  void finish();
+
+ private:
+  DeviceInfo device_;
+  ContextHandle context_;
+  QueueHandle queue_;
+  ProgramCache programs_;
+  size_t max_work_group_size_ = 1;
+  size_t max_work_item_sizes_[3] = {1, 1, 1};
+};
+
+}  // namespace flexsight::opencl

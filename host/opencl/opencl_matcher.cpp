@@ -1,0 +1,238 @@
+// The OpenCL scheduler: host/stereo_pipeline.cpp's stage list, stage for stage, with
+// device buffers in place of the reference's vectors. Keep the two in step: the
+// pipeline tests compare their results byte for byte.
+#include "host/opencl/opencl_matcher.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "fallback/image_pyramid.h"
+#include "fallback/weight_table.h"
+#include "host/opencl/opencl_stages.h"
+#include "host/opencl/pipeline_mirror.h"
+
+namespace flexsight::opencl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+DeviceView make_view(Context& context, int width, int height, const char* name) {
+  const size_t pixels = static_cast<size_t>(width) * height;
+  return {width, height, Buffer<float>(context, 4 * pixels, std::string(name) + " colour"),
+          Buffer<float>(context, 2 * pixels, std::string(name) + " gradient")};
+}
+
+DeviceField make_field(Context& context, int width, int height, const char* name) {
+  const size_t pixels = static_cast<size_t>(width) * height;
+  return {width, height, Buffer<float>(context, 4 * pixels, std::string(name) + " planes"),
+          Buffer<float>(context, pixels, std::string(name) + " cost")};
+}
+
+// build_pyramid on the device: level 0 from the host colour, then downsample.
+std::vector<DeviceView> build_device_pyramid(OpenClStages& stages, const cv::Mat& rgb8,
+                                             int levels, const char* name) {
+  std::vector<DeviceView> pyramid;
+  pyramid.reserve(levels);
+  pyramid.push_back(make_view(stages.context(), rgb8.cols, rgb8.rows, name));
+  pyramid.back().color.write(color_floats(rgb8));
+  stages.compute_gradient(pyramid.back());
+  for (int level = 1; level < levels; ++level) {
+    const DeviceView& fine = pyramid.back();
+    DeviceView coarse =
+        make_view(stages.context(), (fine.width + 1) / 2, (fine.height + 1) / 2, name);
+    stages.downsample_color(fine, coarse);
+    stages.compute_gradient(coarse);
+    pyramid.push_back(std::move(coarse));
+  }
+  return pyramid;
+}
+
+const char* const kViewNames[2] = {"left", "right"};
+
+}  // namespace
+
+struct OpenClMatcher::State {
+  Context context;
+  KernelProfiler profiler;
+  OpenClStages stages;
+  State(const DeviceInfo& device, bool profile)
+      : context(device), stages(context, profile ? &profiler : nullptr) {}
+};
+
+bool opencl_available(std::string* why) {
+  try {
+    if (!enumerate_devices().empty()) return true;
+    if (why) *why = "no OpenCL platform or device is installed";
+  } catch (const OpenClError& error) {
+    if (why) *why = error.what();
+  }
+  return false;
+}
+
+std::vector<std::string> list_opencl_devices() {
+  std::vector<std::string> lines;
+  for (const DeviceInfo& device : enumerate_devices()) lines.push_back(device.description());
+  return lines;
+}
+
+OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
+  const DeviceInfo device = select_device(options.device);
+  if (!device.correctly_rounded_divide_sqrt) {
+    throw OpenClError("device '" + device.name +
+                          "' has no correctly rounded single-precision divide and sqrt, so "
+                          "its results could not match the reference",
+                      CL_INVALID_DEVICE);
+  }
+  state_ = std::make_unique<State>(device, options.profile);
+}
+
+OpenClMatcher::~OpenClMatcher() = default;
+
+std::vector<KernelTiming> OpenClMatcher::kernel_timings() const {
+  return state_->profiler.summary();
+}
+
+std::string OpenClMatcher::device_description() const {
+  return state_->context.device().description();
+}
+
+StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                                const StereoParams& params, const ProgressCallback& progress) {
+  validate_inputs(left_rgb8, right_rgb8, params);
+  auto report = [&](const std::string& what) {
+    if (progress) progress(what);
+  };
+  Context& context = state_->context;
+  OpenClStages& stages = state_->stages;
+  state_->profiler.clear();
+  StereoResult result;
+  const int levels = params.method == StereoMethod::PMS
+                         ? 1
+                         : pyramid_level_count(left_rgb8.cols, left_rgb8.rows, params.coarsest_width);
+
+  auto start = Clock::now();
+  const std::vector<DeviceView> pyramid[2] = {
+      build_device_pyramid(stages, left_rgb8, levels, kViewNames[0]),
+      build_device_pyramid(stages, right_rgb8, levels, kViewNames[1])};
+  const Buffer<float> weights(context, make_support_weight_table(params.gamma), "weights");
+  context.finish();
+  result.timings.push_back({"pyramid", seconds_since(start)});
+
+  DeviceField fields[2];
+  Buffer<float> confidence[2];  // of the current level, from the coarser one
+  for (int level = levels - 1; level >= 0; --level) {
+    start = Clock::now();
+    const bool coarsest = level == levels - 1;
+    DeviceLevel in;
+    in.views[PMS_VIEW_LEFT] = &pyramid[PMS_VIEW_LEFT][level];
+    in.views[PMS_VIEW_RIGHT] = &pyramid[PMS_VIEW_RIGHT][level];
+    in.weights = &weights;
+    in.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
+               params.tau_color, params.tau_gradient};
+    in.ndisp = level_ndisp(params.ndisp, level);
+    in.seed = params.seed;
+    const int width = in.views[0]->width;
+    const int height = in.views[0]->height;
+    const size_t pixels = static_cast<size_t>(width) * height;
+    const std::string level_name = "level " + std::to_string(level) + " (" +
+                                   std::to_string(width) + "x" + std::to_string(height) + ")";
+
+    for (int view = 0; view < 2; ++view) {
+      if (coarsest) {
+        fields[view] = make_field(context, width, height, kViewNames[view]);
+        stages.init_random_planes(in, view, iteration_key(level, 0), fields[view]);
+      } else {
+        DeviceField coarse = std::move(fields[view]);
+        fields[view] = make_field(context, width, height, kViewNames[view]);
+        stages.carry_planes_to_finer(coarse, fields[view]);
+        stages.evaluate_costs(in, view, fields[view]);
+        Buffer<float> fine_confidence(context, pixels, "confidence");
+        stages.upsample_nearest(confidence[view], coarse.width, coarse.height, fine_confidence,
+                                width, height);
+        confidence[view] = std::move(fine_confidence);
+      }
+    }
+
+    SearchSchedule schedule;
+    schedule.initial_range = 0.5f * static_cast<float>(in.ndisp);
+    if (!coarsest) {
+      schedule.initial_range = std::min(schedule.initial_range, params.fine_search_range);
+    }
+    schedule.normal_range = params.max_normal_delta;
+    schedule.min_range = params.min_search_range;
+    schedule.confident_threshold = params.confident_threshold;
+    schedule.confident_max_range = params.confident_max_range;
+
+    const int iterations = coarsest ? params.iterations : params.iterations_fine;
+    for (int iteration = 1; iteration <= iterations; ++iteration) {
+      report(level_name + ", iteration " + std::to_string(iteration) + "/" +
+             std::to_string(iterations));
+      for (int view = 0; view < 2; ++view) {
+        const Buffer<float>* trusted = coarsest ? nullptr : &confidence[view];
+        for (int colour = 0; colour < 2; ++colour) {
+          stages.propagate_spatial(in, view, colour, fields[view]);
+          stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
+          stages.refine_random(in, view, colour, iteration_key(level, iteration), schedule,
+                               trusted, fields[view]);
+        }
+      }
+    }
+
+    // The confidence that steers the next level's random search.
+    if (level > 0) {
+      Buffer<float> disparity[2] = {Buffer<float>(context, pixels, "disparity (left)"),
+                                    Buffer<float>(context, pixels, "disparity (right)")};
+      for (int view = 0; view < 2; ++view) stages.plane_disparities(fields[view], disparity[view]);
+      for (int view = 0; view < 2; ++view) {
+        confidence[view] = Buffer<float>(context, pixels, "confidence");
+        stages.lr_confidence(disparity[view], disparity[1 - view], width, height, view,
+                             confidence[view]);
+      }
+    }
+    context.finish();
+    result.timings.push_back({level_name, seconds_since(start)});
+  }
+
+  // Post-processing on the finest level.
+  start = Clock::now();
+  report("post-processing");
+  const int width = left_rgb8.cols;
+  const int height = left_rgb8.rows;
+  const size_t pixels = static_cast<size_t>(width) * height;
+  Buffer<float> raw[2] = {Buffer<float>(context, pixels, "raw disparity (left)"),
+                          Buffer<float>(context, pixels, "raw disparity (right)")};
+  for (int view = 0; view < 2; ++view) stages.plane_disparities(fields[view], raw[view]);
+  Buffer<std::uint8_t> consistent(context, pixels, "consistent");
+  stages.left_right_check(raw[PMS_VIEW_LEFT], raw[PMS_VIEW_RIGHT], width, height,
+                          params.lr_tolerance, consistent);
+  DeviceField filled{width, height, Buffer<float>(context, 4 * pixels, "filled planes"),
+                     Buffer<float>()};
+  stages.fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height, filled.planes);
+  Buffer<float> filled_disparity(context, pixels, "filled disparity");
+  stages.plane_disparities(filled, filled_disparity);
+  const Buffer<float> median_weights(context, make_support_weight_table(params.median_gamma),
+                                     "median weights");
+  Buffer<float> filtered(context, pixels, "filtered disparity");
+  stages.weighted_median_filled(filled_disparity, consistent, pyramid[PMS_VIEW_LEFT][0],
+                                median_weights, params.median_window / 2, params.window_step,
+                                filtered);
+  std::vector<float> disparity = filtered.read();
+  const float max_disparity = static_cast<float>(params.ndisp - 1);
+  for (float& d : disparity) d = std::min(std::max(d, 0.0f), max_disparity);
+  const std::vector<float> raw_left = raw[PMS_VIEW_LEFT].read();
+  const std::vector<float> raw_right = raw[PMS_VIEW_RIGHT].read();
+  const std::vector<float> planes = filled.planes.read();
+  result.timings.push_back({"post-processing", seconds_since(start)});
+
+  result.disparity = to_mat(disparity, width, height, 1);
+  result.raw_left = to_mat(raw_left, width, height, 1);
+  result.raw_right = to_mat(raw_right, width, height, 1);
+  result.planes_left = planes_to_mat(planes, width, height);
+  return result;
+}
+
+}  // namespace flexsight::opencl

@@ -1,0 +1,56 @@
+#pragma once
+// The OpenCL path of the matcher: the reference scheduler's stage list
+// (host/stereo_pipeline.cpp) run with the kernels of kernels/, giving the same
+// StereoResult byte for byte on a device with IEEE single precision and correctly
+// rounded division and square root.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/opencl/kernel_timing.h"
+#include "host/stereo_pipeline.h"
+
+namespace flexsight::opencl {
+
+struct OpenClOptions {
+  // Device selector: empty for the first GPU (else the first device), a number for an
+  // index of list_opencl_devices(), otherwise part of "<platform> <device>" names.
+  std::string device;
+  // Record every kernel launch's device time (see OpenClMatcher::kernel_timings).
+  bool profile = false;
+};
+
+// True when at least one OpenCL device exists; otherwise false, with the reason in
+// *why (when given).
+bool opencl_available(std::string* why);
+
+// "#0 pthread-skylake-avx512-AMD EPYC (Portable Computing Language, CPU, OpenCL 3.0 ...)"
+// for every device, in selector index order. Empty when there is no platform.
+std::vector<std::string> list_opencl_devices();
+
+// Holds the device and its built programs across runs (building costs seconds).
+class OpenClMatcher {
+ public:
+  // Throws OpenClError when no device matches or the kernels do not build.
+  explicit OpenClMatcher(const OpenClOptions& options = {});
+  ~OpenClMatcher();
+  OpenClMatcher(const OpenClMatcher&) = delete;
+  OpenClMatcher& operator=(const OpenClMatcher&) = delete;
+
+  // As run_stereo: same validation (InputError), same result bytes. The timings are
+  // wall-clock per stage group, measured after the device finished it.
+  StereoResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                   const StereoParams& params, const ProgressCallback& progress = {});
+
+  // Per-kernel device times of the last run (empty unless options.profile).
+  std::vector<KernelTiming> kernel_timings() const;
+
+  // The chosen device, as in list_opencl_devices().
+  std::string device_description() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace flexsight::opencl

@@ -1,0 +1,225 @@
+#include "host/opencl/opencl_stages.h"
+
+#include <stdexcept>
+
+namespace flexsight::opencl {
+namespace {
+
+namespace src = kernel_sources;
+
+// A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
+template <typename T>
+void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
+  if (elements < 0 || buffer.size() < static_cast<size_t>(elements)) {
+    throw std::invalid_argument(std::string(stage) + ": buffer '" + buffer.what() + "' holds " +
+                                std::to_string(buffer.size()) + " elements, the stage needs " +
+                                std::to_string(elements));
+  }
+}
+
+void require_view(const DeviceView& view, const char* stage) {
+  require_size(view.color, 4LL * view.pixels(), stage);
+  require_size(view.gradient, 2LL * view.pixels(), stage);
+}
+
+void require_field(const DeviceField& field, const char* stage) {
+  require_size(field.planes, 4LL * field.pixels(), stage);
+  require_size(field.cost, field.pixels(), stage);
+}
+
+// The level's two views and the field have one size (the reference assumes it too).
+void require_level(const DeviceLevel& in, const DeviceField& field, const char* stage) {
+  for (const DeviceView* view : in.views) {
+    require_view(*view, stage);
+    if (view->width != field.width || view->height != field.height) {
+      throw std::invalid_argument(std::string(stage) + ": views and field differ in size");
+    }
+  }
+  require_size(*in.weights, PMS_WEIGHT_TABLE_SIZE, stage);
+  require_field(field, stage);
+}
+
+}  // namespace
+
+OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler)
+    : context_(context), profiler_(profiler),
+      downsample_color_(make_kernel(src::build_view, "downsample_color")),
+      compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
+      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes")),
+      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs")),
+      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial")),
+      propagate_view_(make_kernel(src::propagate_view, "propagate_view")),
+      refine_random_(make_kernel(src::refine_random, "refine_random")),
+      carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
+      plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
+      lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),
+      upsample_nearest_(make_kernel(src::upsample_nearest, "upsample_nearest")),
+      left_right_check_(make_kernel(src::left_right_check, "left_right_check")),
+      fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")) {}
+
+Kernel OpenClStages::make_kernel(const KernelSource& source, const char* name,
+                                 const std::string& options) {
+  return Kernel(context_, context_.program(source, options), name);
+}
+
+template <typename... Rest>
+void OpenClStages::set_cost_args(Kernel& kernel, const DeviceLevel& in, int view,
+                                 const Rest&... rest) {
+  const DeviceView& ref = *in.views[view];
+  const DeviceView& other = *in.views[1 - view];
+  kernel.set_args(ref.color, ref.gradient, other.color, other.gradient, *in.weights, ref.width,
+                  ref.height, in.cost, view, rest...);
+}
+
+void OpenClStages::launch(Kernel& kernel, size_t width, size_t height) {
+  Event event = kernel.launch(width, height);
+  if (profiler_) profiler_->record(kernel.name(), std::move(event));
+}
+
+// One work item per pixel of the colour: half a row, rounded up.
+void OpenClStages::launch_checkerboard(Kernel& kernel, int width, int height) {
+  launch(kernel, (static_cast<size_t>(width) + 1) / 2, height);
+}
+
+void OpenClStages::downsample_color(const DeviceView& fine, DeviceView& coarse) {
+  require_size(fine.color, 4LL * fine.pixels(), "downsample_color");
+  require_size(coarse.color, 4LL * coarse.pixels(), "downsample_color");
+  downsample_color_.set_args(fine.color, fine.width, fine.height, coarse.color, coarse.width,
+                             coarse.height);
+  launch(downsample_color_, coarse.width, coarse.height);
+}
+
+void OpenClStages::compute_gradient(DeviceView& view) {
+  require_view(view, "compute_gradient");
+  compute_gradient_.set_args(view.color, view.width, view.height, view.gradient);
+  launch(compute_gradient_, view.width, view.height);
+}
+
+void OpenClStages::init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,
+                                      DeviceField& field) {
+  require_level(in, field, "init_random_planes");
+  set_cost_args(init_random_planes_, in, view, in.seed, iteration, in.max_disparity(),
+                field.planes, field.cost);
+  launch(init_random_planes_, field.width, field.height);
+}
+
+void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& field) {
+  require_level(in, field, "evaluate_costs");
+  set_cost_args(evaluate_costs_, in, view, field.planes, field.cost);
+  launch(evaluate_costs_, field.width, field.height);
+}
+
+void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,
+                                     DeviceField& field) {
+  require_level(in, field, "propagate_spatial");
+  set_cost_args(propagate_spatial_, in, view, colour, field.planes, field.cost);
+  launch_checkerboard(propagate_spatial_, field.width, field.height);
+}
+
+void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
+                                  const DeviceField& other, DeviceField& field) {
+  require_level(in, field, "propagate_view");
+  require_field(other, "propagate_view");
+  set_cost_args(propagate_view_, in, view, colour, other.planes, field.planes, field.cost);
+  launch_checkerboard(propagate_view_, field.width, field.height);
+}
+
+void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
+                                 std::uint32_t iteration, const SearchSchedule& schedule,
+                                 const Buffer<float>* confidence, DeviceField& field) {
+  require_level(in, field, "refine_random");
+  if (confidence) require_size(*confidence, field.pixels(), "refine_random");
+  set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
+                schedule.initial_range, schedule.normal_range, schedule.min_range,
+                schedule.confident_threshold, schedule.confident_max_range, confidence,
+                field.planes, field.cost);
+  launch_checkerboard(refine_random_, field.width, field.height);
+}
+
+void OpenClStages::carry_planes_to_finer(const DeviceField& coarse, DeviceField& fine) {
+  require_size(coarse.planes, 4LL * coarse.pixels(), "carry_planes_to_finer");
+  require_size(fine.planes, 4LL * fine.pixels(), "carry_planes_to_finer");
+  carry_planes_to_finer_.set_args(coarse.planes, coarse.width, coarse.height, fine.planes,
+                                  fine.width, fine.height);
+  launch(carry_planes_to_finer_, fine.width, fine.height);
+}
+
+void OpenClStages::plane_disparities(const DeviceField& field, Buffer<float>& disparity) {
+  require_size(field.planes, 4LL * field.pixels(), "plane_disparities");
+  require_size(disparity, field.pixels(), "plane_disparities");
+  plane_disparities_.set_args(field.planes, field.width, field.height, disparity);
+  launch(plane_disparities_, field.width, field.height);
+}
+
+void OpenClStages::lr_confidence(const Buffer<float>& disparity,
+                                 const Buffer<float>& other_disparity, int width, int height,
+                                 int view, Buffer<float>& confidence) {
+  const long long pixels = 1LL * width * height;
+  require_size(disparity, pixels, "lr_confidence");
+  require_size(other_disparity, pixels, "lr_confidence");
+  require_size(confidence, pixels, "lr_confidence");
+  lr_confidence_.set_args(disparity, other_disparity, width, height, view, confidence);
+  launch(lr_confidence_, width, height);
+}
+
+void OpenClStages::upsample_nearest(const Buffer<float>& coarse, int coarse_width,
+                                    int coarse_height, Buffer<float>& fine, int fine_width,
+                                    int fine_height) {
+  require_size(coarse, 1LL * coarse_width * coarse_height, "upsample_nearest");
+  require_size(fine, 1LL * fine_width * fine_height, "upsample_nearest");
+  upsample_nearest_.set_args(coarse, coarse_width, coarse_height, fine, fine_width, fine_height);
+  launch(upsample_nearest_, fine_width, fine_height);
+}
+
+void OpenClStages::left_right_check(const Buffer<float>& left_disparity,
+                                    const Buffer<float>& right_disparity, int width, int height,
+                                    float tolerance, Buffer<std::uint8_t>& consistent) {
+  const long long pixels = 1LL * width * height;
+  require_size(left_disparity, pixels, "left_right_check");
+  require_size(right_disparity, pixels, "left_right_check");
+  require_size(consistent, pixels, "left_right_check");
+  left_right_check_.set_args(left_disparity, right_disparity, width, height, tolerance,
+                             consistent);
+  launch(left_right_check_, width, height);
+}
+
+void OpenClStages::fill_inconsistent(const Buffer<float>& planes,
+                                     const Buffer<std::uint8_t>& consistent, int width,
+                                     int height, Buffer<float>& filled) {
+  const long long pixels = 1LL * width * height;
+  require_size(planes, 4 * pixels, "fill_inconsistent");
+  require_size(consistent, pixels, "fill_inconsistent");
+  require_size(filled, 4 * pixels, "fill_inconsistent");
+  fill_inconsistent_.set_args(planes, consistent, width, height, filled);
+  launch(fill_inconsistent_, width, height);
+}
+
+void OpenClStages::weighted_median_filled(const Buffer<float>& disparity,
+                                          const Buffer<std::uint8_t>& consistent,
+                                          const DeviceView& image, const Buffer<float>& weights,
+                                          int radius, int step, Buffer<float>& filtered) {
+  const long long pixels = image.pixels();
+  require_size(disparity, pixels, "weighted_median_filled");
+  require_size(consistent, pixels, "weighted_median_filled");
+  require_size(image.color, 4 * pixels, "weighted_median_filled");
+  require_size(weights, PMS_WEIGHT_TABLE_SIZE, "weighted_median_filled");
+  require_size(filtered, pixels, "weighted_median_filled");
+  if (radius < 0 || step < 1) throw std::invalid_argument("weighted_median_filled: bad window");
+  // The kernel's private sample arrays hold exactly one window (see the reference).
+  const int side = 2 * (radius / step) + 1;
+  const int samples = side * side;
+  auto found = weighted_median_.find(samples);
+  if (found == weighted_median_.end()) {
+    found = weighted_median_
+                .emplace(samples, make_kernel(src::weighted_median_filled, "weighted_median_filled",
+                                              "-DPMS_MEDIAN_MAX_SAMPLES=" +
+                                                  std::to_string(samples)))
+                .first;
+  }
+  Kernel& kernel = found->second;
+  kernel.set_args(disparity, consistent, image.color, weights, image.width, image.height, radius,
+                  step, filtered);
+  launch(kernel, image.width, image.height);
+}
+
+}  // namespace flexsight::opencl

@@ -1,0 +1,74 @@
+#pragma once
+// One method per kernel of kernels/, each the device twin of a reference function of
+// fallback/ with the same meaning of its arguments. The scheduler (opencl_matcher.cpp)
+// and the tests (which compare every stage with its reference byte for byte) both call
+// these. Outputs are allocated by the caller and must hold at least the pixels of the
+// stage; nothing past them is written.
+#include <cstdint>
+#include <map>
+
+#include "host/opencl/device_level.h"
+#include "host/opencl/kernel_profiler.h"
+
+namespace flexsight::opencl {
+
+class OpenClStages {
+ public:
+  // Builds the programs (or takes them from the context's cache). `profiler` (may be
+  // null) receives the event of every launch.
+  explicit OpenClStages(Context& context, KernelProfiler* profiler = nullptr);
+
+  Context& context() { return context_; }
+
+  // fallback/image_pyramid.cpp: downsample's colour part, then compute_gradient.
+  void downsample_color(const DeviceView& fine, DeviceView& coarse);
+  void compute_gradient(DeviceView& view);
+
+  // fallback/patchmatch_reference.cpp. `field` (and `fine`) must have their size set.
+  void init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,
+                          DeviceField& field);
+  void evaluate_costs(const DeviceLevel& in, int view, DeviceField& field);
+  void propagate_spatial(const DeviceLevel& in, int view, int colour, DeviceField& field);
+  void propagate_view(const DeviceLevel& in, int view, int colour, const DeviceField& other,
+                      DeviceField& field);
+  void refine_random(const DeviceLevel& in, int view, int colour, std::uint32_t iteration,
+                     const SearchSchedule& schedule, const Buffer<float>* confidence,
+                     DeviceField& field);
+  void carry_planes_to_finer(const DeviceField& coarse, DeviceField& fine);
+  void plane_disparities(const DeviceField& field, Buffer<float>& disparity);
+  void lr_confidence(const Buffer<float>& disparity, const Buffer<float>& other_disparity,
+                     int width, int height, int view, Buffer<float>& confidence);
+  void upsample_nearest(const Buffer<float>& coarse, int coarse_width, int coarse_height,
+                        Buffer<float>& fine, int fine_width, int fine_height);
+
+  // fallback/postprocess_reference.cpp.
+  void left_right_check(const Buffer<float>& left_disparity, const Buffer<float>& right_disparity,
+                        int width, int height, float tolerance,
+                        Buffer<std::uint8_t>& consistent);
+  void fill_inconsistent(const Buffer<float>& planes, const Buffer<std::uint8_t>& consistent,
+                         int width, int height, Buffer<float>& filled);
+  void weighted_median_filled(const Buffer<float>& disparity,
+                              const Buffer<std::uint8_t>& consistent, const DeviceView& image,
+                              const Buffer<float>& weights, int radius, int step,
+                              Buffer<float>& filtered);
+
+ private:
+  Kernel make_kernel(const KernelSource& source, const char* name,
+                     const std::string& options = {});
+  // Sets the leading arguments of the cost kernels (PMS_COST_KERNEL_ARGS), then `rest`.
+  template <typename... Rest>
+  void set_cost_args(Kernel& kernel, const DeviceLevel& in, int view, const Rest&... rest);
+  void launch(Kernel& kernel, size_t width, size_t height);
+  void launch_checkerboard(Kernel& kernel, int width, int height);
+
+  Context& context_;
+  KernelProfiler* profiler_;
+  Kernel downsample_color_, compute_gradient_, init_random_planes_, evaluate_costs_,
+      propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
+      plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,
+      fill_inconsistent_;
+  // weighted_median_filled, built per PMS_MEDIAN_MAX_SAMPLES (window samples).
+  std::map<int, Kernel> weighted_median_;
+};
+
+}  // namespace flexsight::opencl

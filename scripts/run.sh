@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The main job on data every Debian machine can get: the Middlebury 2014 Motorcycle pair
+# that python3-skimage ships (741x500, with ground truth). Writes out/motorcycle_disp.pfm
+# and a colored PNG, and prints time per stage and bad-N against the ground truth.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+
+skimage_data=$(/usr/bin/python3 -c 'import os, skimage.data; print(os.path.dirname(skimage.data.__file__))')
+mkdir -p out
+# The ground truth ships as a NumPy archive; convert it to PFM (inf = unknown).
+/usr/bin/python3 scripts/npz_to_pfm.py "$skimage_data/motorcycle_disp.npz" out/motorcycle_gt.pfm
+
+# ndisp 70: the disparity range Middlebury gives for this scene at this resolution.
+build/flexsight stereo "$skimage_data/motorcycle_left.png" "$skimage_data/motorcycle_right.png" \
+  -o out/motorcycle_disp.pfm --png out/motorcycle_disp.png --ndisp 70 \
+  --gt out/motorcycle_gt.pfm "$@"

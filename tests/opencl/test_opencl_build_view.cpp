@@ -1,0 +1,54 @@
+// Pyramid levels on the device against fallback/image_pyramid.cpp, byte for byte.
+#include <gtest/gtest.h>
+
+#include "opencl_test_support.h"
+
+namespace flexsight::opencl::test {
+namespace {
+
+struct ImageCase {
+  int width;
+  int height;
+  unsigned seed;
+};
+
+std::string size_name(const ImageCase& c) {
+  return std::to_string(c.width) + "x" + std::to_string(c.height);
+}
+void PrintTo(const ImageCase& c, std::ostream* out) { *out << size_name(c); }
+
+class BuildView : public ::testing::TestWithParam<ImageCase> {};
+
+TEST_P(BuildView, GradientMatchesTheReference) {
+  const ImageCase c = GetParam();
+  const ViewImage image = make_view_image(testing_support::random_rgb8(c.width, c.height, c.seed));
+  DeviceView view{image.width, image.height, guarded(image.color, "colour"),
+                  guarded_output<float>(image.gradient.size(), "gradient")};
+  stages().compute_gradient(view);
+  EXPECT_TRUE(same_buffer(image.gradient, view.gradient));
+  EXPECT_TRUE(same_buffer(image.color, view.color)) << "the colour is an input";
+}
+
+TEST_P(BuildView, DownsampleMatchesTheReference) {
+  const ImageCase c = GetParam();
+  const ViewImage fine = make_view_image(testing_support::random_rgb8(c.width, c.height, c.seed));
+  const ViewImage expected = downsample(fine);
+  const DeviceView device_fine = upload(fine, "fine");
+  DeviceView coarse{expected.width, expected.height,
+                    guarded_output<float>(expected.color.size(), "coarse colour"),
+                    guarded_output<float>(expected.gradient.size(), "coarse gradient")};
+  stages().downsample_color(device_fine, coarse);
+  stages().compute_gradient(coarse);
+  EXPECT_TRUE(same_buffer(expected.color, coarse.color));
+  EXPECT_TRUE(same_buffer(expected.gradient, coarse.gradient));
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, BuildView,
+                         ::testing::Values(ImageCase{1, 1, 1}, ImageCase{2, 2, 2},
+                                           ImageCase{7, 5, 3}, ImageCase{1, 9, 4},
+                                           ImageCase{9, 1, 5}, ImageCase{33, 17, 6},
+                                           ImageCase{131, 93, 7}, ImageCase{64, 48, 8}),
+                         [](const auto& info) { return size_name(info.param); });
+
+}  // namespace
+}  // namespace flexsight::opencl::test

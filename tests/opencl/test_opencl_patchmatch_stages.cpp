@@ -1,0 +1,199 @@
+// Every PatchMatch stage kernel against its function of fallback/patchmatch_reference.cpp
+// on the same inputs, byte for byte, with a guard region after every output.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "opencl_test_support.h"
+
+namespace flexsight::opencl::test {
+namespace {
+
+class PatchMatchStage : public ::testing::TestWithParam<LevelCase> {};
+
+// A random confidence in [0, 1) per pixel: about half the pixels count as confident at
+// the threshold the tests use.
+std::vector<float> random_confidence(int pixels, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> confidence(pixels);
+  for (float& c : confidence) c = u(rng);
+  return confidence;
+}
+
+// The two fields after a first spatial step, so that propagation and refinement
+// start from planes that differ between neighbours and views.
+void advance(LevelFixture& f) {
+  for (int view = 0; view < 2; ++view) propagate_spatial(f.in, view, 0, f.fields[view]);
+}
+
+// Fails the test when a stage left every plane of a field of more than a few pixels as
+// it was: the comparison would then prove little.
+void expect_some_change(const PlaneField& before, const PlaneField& after) {
+  if (before.pixels() < 500) return;
+  EXPECT_NE(before.planes, after.planes) << "the reference stage changed no plane";
+}
+
+SearchSchedule schedule_for(const LevelFixture& f) {
+  SearchSchedule schedule;
+  schedule.initial_range = 0.5f * static_cast<float>(f.in.ndisp);
+  schedule.normal_range = 1.0f;
+  schedule.min_range = 0.25f;
+  schedule.confident_threshold = 0.5f;
+  schedule.confident_max_range = 2.0f;
+  return schedule;
+}
+
+TEST_P(PatchMatchStage, InitRandomPlanes) {
+  LevelFixture f(GetParam());
+  for (int view = 0; view < 2; ++view) {
+    const size_t pixels = f.fields[view].pixels();
+    DeviceField field{f.fields[view].width, f.fields[view].height,
+                      guarded_output<float>(4 * pixels, "planes"),
+                      guarded_output<float>(pixels, "cost")};
+    stages().init_random_planes(f.device_in, view, 0, field);
+    expect_same_field(f.fields[view], field);
+  }
+}
+
+TEST_P(PatchMatchStage, EvaluateCosts) {
+  LevelFixture f(GetParam());
+  advance(f);
+  for (int view = 0; view < 2; ++view) {
+    PlaneField expected = f.fields[view];
+    evaluate_costs(f.in, view, expected);
+    DeviceField field{expected.width, expected.height, guarded(f.fields[view].planes, "planes"),
+                      guarded_output<float>(expected.pixels(), "cost")};
+    stages().evaluate_costs(f.device_in, view, field);
+    expect_same_field(expected, field);
+  }
+}
+
+TEST_P(PatchMatchStage, PropagateSpatial) {
+  LevelFixture f(GetParam());
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const PlaneField before = f.fields[view];
+      propagate_spatial(f.in, view, colour, f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      stages().propagate_spatial(f.device_in, view, colour, field);
+      expect_same_field(f.fields[view], field);
+    }
+  }
+}
+
+TEST_P(PatchMatchStage, PropagateView) {
+  LevelFixture f(GetParam());
+  advance(f);
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const DeviceField other = upload(f.fields[1 - view], "other field");
+      const PlaneField before = f.fields[view];
+      propagate_view(f.in, view, colour, f.fields[1 - view], f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      stages().propagate_view(f.device_in, view, colour, other, field);
+      expect_same_field(f.fields[view], field);
+      EXPECT_TRUE(same_buffer(f.fields[1 - view].planes, other.planes)) << "input changed";
+    }
+  }
+}
+
+TEST_P(PatchMatchStage, RefineRandomWithoutConfidence) {
+  LevelFixture f(GetParam());
+  advance(f);
+  const SearchSchedule schedule = schedule_for(f);
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const PlaneField before = f.fields[view];
+      refine_random(f.in, view, colour, 5, schedule, nullptr, f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      stages().refine_random(f.device_in, view, colour, 5, schedule, nullptr, field);
+      expect_same_field(f.fields[view], field);
+    }
+  }
+}
+
+TEST_P(PatchMatchStage, RefineRandomWithConfidence) {
+  LevelFixture f(GetParam());
+  advance(f);
+  const SearchSchedule schedule = schedule_for(f);
+  const std::vector<float> confidence =
+      random_confidence(f.fields[0].pixels(), GetParam().seed);
+  const Buffer<float> device_confidence = guarded(confidence, "confidence");
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const PlaneField before = f.fields[view];
+      refine_random(f.in, view, colour, 70, schedule, &confidence, f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      stages().refine_random(f.device_in, view, colour, 70, schedule, &device_confidence, field);
+      expect_same_field(f.fields[view], field);
+    }
+  }
+}
+
+TEST_P(PatchMatchStage, CarryPlanesToFiner) {
+  LevelFixture f(GetParam());
+  advance(f);
+  const PlaneField& coarse = f.fields[0];
+  const DeviceField device_coarse = upload(coarse, "coarse");
+  // Both finer sizes that halve (rounding up) to the coarse size.
+  for (int odd = 0; odd < 2; ++odd) {
+    PlaneField fine;
+    fine.resize(std::max(1, 2 * coarse.width - odd), std::max(1, 2 * coarse.height - odd));
+    carry_planes_to_finer(coarse, fine);
+    DeviceField device_fine{fine.width, fine.height,
+                            guarded_output<float>(fine.planes.size(), "fine planes"),
+                            guarded_output<float>(fine.cost.size(), "fine cost")};
+    stages().carry_planes_to_finer(device_coarse, device_fine);
+    EXPECT_TRUE(same_buffer(fine.planes, device_fine.planes)) << fine.width << "x" << fine.height;
+    read_checked(device_fine.cost, fine.cost.size());  // only the guard matters here
+  }
+}
+
+TEST_P(PatchMatchStage, PlaneDisparitiesAndConfidence) {
+  LevelFixture f(GetParam());
+  advance(f);
+  const int width = f.fields[0].width;
+  const int height = f.fields[0].height;
+  std::vector<float> disparity[2];
+  Buffer<float> device_disparity[2];
+  for (int view = 0; view < 2; ++view) {
+    disparity[view] = plane_disparities(f.fields[view], 2);
+    device_disparity[view] = guarded_output<float>(disparity[view].size(), "disparity");
+    stages().plane_disparities(upload(f.fields[view], "field"), device_disparity[view]);
+    EXPECT_TRUE(same_buffer(disparity[view], device_disparity[view]));
+  }
+  for (int view = 0; view < 2; ++view) {
+    const std::vector<float> expected =
+        lr_confidence(disparity[view], disparity[1 - view], width, height, view, 2);
+    Buffer<float> confidence = guarded_output<float>(expected.size(), "confidence");
+    stages().lr_confidence(device_disparity[view], device_disparity[1 - view], width, height,
+                           view, confidence);
+    EXPECT_TRUE(same_buffer(expected, confidence)) << "view " << view;
+  }
+}
+
+TEST_P(PatchMatchStage, UpsampleNearest) {
+  const LevelCase c = GetParam();
+  const std::vector<float> coarse = random_confidence(c.width * c.height, c.seed);
+  const Buffer<float> device_coarse = guarded(coarse, "coarse");
+  for (int odd = 0; odd < 2; ++odd) {
+    const int fine_width = std::max(1, 2 * c.width - odd);
+    const int fine_height = std::max(1, 2 * c.height - odd);
+    const std::vector<float> expected =
+        upsample_nearest(coarse, c.width, c.height, fine_width, fine_height);
+    Buffer<float> fine = guarded_output<float>(expected.size(), "fine");
+    stages().upsample_nearest(device_coarse, c.width, c.height, fine, fine_width, fine_height);
+    EXPECT_TRUE(same_buffer(expected, fine));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, PatchMatchStage, ::testing::ValuesIn(level_cases()),
+                         level_case_name);
+
+}  // namespace
+}  // namespace flexsight::opencl::test

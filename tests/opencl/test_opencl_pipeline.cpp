@@ -1,0 +1,104 @@
+// The whole OpenCL pipeline against run_stereo on a crop of the TeddyH fixture: the raw
+// disparities of both views, the filled planes and the final disparity, byte for byte.
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include "host/io/image_io.h"
+#include "host/io/input_error.h"
+#include "host/opencl/opencl_matcher.h"
+#include "opencl_test_support.h"
+
+namespace flexsight::opencl::test {
+namespace {
+
+struct PipelineCase {
+  const char* name;
+  StereoMethod method;
+  int window;
+  int median_window;
+  int ndisp;
+};
+
+void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
+
+// The 131x93 crop of test_determinism.cpp: odd sizes, real texture, quick to match.
+struct Crop {
+  cv::Mat left, right;
+};
+
+Crop fixture_crop() {
+  StereoPair pair = load_stereo_pair(testing_support::fixture_dir() + "/im0.png",
+                                     testing_support::fixture_dir() + "/im1.png");
+  cv::Rect roi(40, 50, 131, 93);
+  return {pair.left(roi).clone(), pair.right(roi).clone()};
+}
+
+OpenClMatcher& matcher() {
+  static OpenClMatcher shared(OpenClOptions{
+      std::getenv("FLEXSIGHT_OPENCL_DEVICE") ? std::getenv("FLEXSIGHT_OPENCL_DEVICE") : "",
+      true});
+  return shared;
+}
+
+double seconds(const std::chrono::steady_clock::time_point& start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+class Pipeline : public ::testing::TestWithParam<PipelineCase> {};
+
+TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
+  const PipelineCase c = GetParam();
+  const Crop crop = fixture_crop();
+  StereoParams params;
+  params.method = c.method;
+  params.ndisp = c.ndisp;
+  params.window = c.window;
+  params.median_window = c.median_window;
+  params.coarsest_width = 40;
+
+  OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
+  auto start = std::chrono::steady_clock::now();
+  const StereoResult expected = run_stereo(crop.left, crop.right, params);
+  const double reference_seconds = seconds(start);
+  start = std::chrono::steady_clock::now();
+  const StereoResult actual = opencl.run(crop.left, crop.right, params);
+  const double opencl_seconds = seconds(start);
+
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_left, actual.raw_left)) << "raw_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
+  EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
+      << "planes_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
+  ASSERT_EQ(expected.timings.size(), actual.timings.size());
+  for (size_t i = 0; i < expected.timings.size(); ++i) {
+    EXPECT_EQ(expected.timings[i].stage, actual.timings[i].stage);
+  }
+
+  // Not a check: the numbers for the record (ctest -V shows them).
+  std::printf("[ timing   ] %s on %s: reference %.3f s, OpenCL %.3f s\n", c.name,
+              opencl.device_description().c_str(), reference_seconds, opencl_seconds);
+  for (const KernelTiming& t : opencl.kernel_timings()) {
+    std::printf("[ timing   ]   %-24s %5d launches %9.3f ms\n", t.kernel.c_str(), t.launches,
+                t.seconds * 1e3);
+  }
+}
+
+TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
+  const Crop crop = fixture_crop();
+  StereoParams params;
+  params.ndisp = 500;
+  EXPECT_THROW(matcher().run(crop.left, crop.right, params), InputError);
+  params.ndisp = 32;
+  EXPECT_THROW(matcher().run(crop.left, crop.right(cv::Rect(0, 0, 100, 93)), params), InputError);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TeddyCrop, Pipeline,
+    ::testing::Values(PipelineCase{"ppms_w11", StereoMethod::PPMS, 11, 11, 32},
+                      PipelineCase{"pms_w11", StereoMethod::PMS, 11, 11, 32},
+                      PipelineCase{"ppms_default_windows", StereoMethod::PPMS, 35, 35, 48}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace flexsight::opencl::test
