@@ -26,10 +26,11 @@ SceneScores score_fixture(StereoMethod method) {
                             read_mask(dir + "/mask0nocc.png"));
 }
 
-// Recorded with the default parameters (seed 1) when this test was written.
-constexpr double kRecordedPpmsBad2All = 100.0;
-constexpr double kRecordedPpmsBad2Nonocc = 100.0;
-constexpr double kRecordedPmsBad2All = 100.0;
+// Recorded with the default parameters (seed 1), 2026-11-23, commit after 'PPMS fine-level
+// search range'.
+constexpr double kRecordedPpmsBad2All = 4.03;
+constexpr double kRecordedPpmsBad2Nonocc = 3.54;
+constexpr double kRecordedPmsBad2All = 5.29;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
 }  // namespace
