@@ -4,21 +4,26 @@
 
 namespace flexsight {
 
-ViewImage make_view_image(const cv::Mat& rgb8) {
+std::vector<float> view_color(const cv::Mat& rgb8) {
   CV_Assert(rgb8.type() == CV_8UC3);
-  ViewImage image;
-  image.width = rgb8.cols;
-  image.height = rgb8.rows;
-  image.color.assign(4 * static_cast<size_t>(image.pixels()), 0.0f);
-  for (int y = 0; y < image.height; ++y) {
+  std::vector<float> color(4 * static_cast<size_t>(rgb8.cols) * rgb8.rows, 0.0f);
+  for (int y = 0; y < rgb8.rows; ++y) {
     const cv::Vec3b* row = rgb8.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < image.width; ++x) {
-      float* out = &image.color[4 * (static_cast<size_t>(y) * image.width + x)];
+    for (int x = 0; x < rgb8.cols; ++x) {
+      float* out = &color[4 * (static_cast<size_t>(y) * rgb8.cols + x)];
       out[0] = row[x][0];
       out[1] = row[x][1];
       out[2] = row[x][2];
     }
   }
+  return color;
+}
+
+ViewImage make_view_image(const cv::Mat& rgb8) {
+  ViewImage image;
+  image.width = rgb8.cols;
+  image.height = rgb8.rows;
+  image.color = view_color(rgb8);
   compute_gradient(image);
   return image;
 }

@@ -17,6 +17,10 @@ struct ViewImage {
 // From CV_8UC3 (RGB), gradient included.
 ViewImage make_view_image(const cv::Mat& rgb8);
 
+// The `color` of make_view_image (r, g, b, 0 per pixel) alone, for the OpenCL path,
+// which computes the gradient on the device.
+std::vector<float> view_color(const cv::Mat& rgb8);
+
 // Coarser level: 2x2 box average with rounding (size rounds up), gradient included.
 ViewImage downsample(const ViewImage& fine);
 

@@ -1,18 +1,18 @@
 // The scheduler of the reference path: PPMS (or flat PMS) level by level, then the
-// post-processing, as a short list of stage calls. The OpenCL path runs the same list.
+// post-processing, as a short list of stage calls. The OpenCL path runs the same list
+// with the same rules (host/pipeline_rules.h).
 #include "host/stereo_pipeline.h"
 
 #include <omp.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
+#include <utility>
 
 #include "fallback/image_pyramid.h"
 #include "fallback/patchmatch_reference.h"
 #include "fallback/postprocess_reference.h"
 #include "fallback/weight_table.h"
-#include "host/io/input_error.h"
+#include "host/pipeline_rules.h"
 
 namespace flexsight {
 namespace {
@@ -21,49 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-cv::Mat to_mat(const std::vector<float>& values, int width, int height, int channels) {
-  cv::Mat mat(height, width, CV_32FC(channels));
-  std::copy(values.begin(), values.end(), mat.ptr<float>());
-  return mat;
-}
-
-// Planes (4 floats per pixel) as a CV_32FC3 of (a, b, c).
-cv::Mat planes_to_mat(const std::vector<float>& planes, int width, int height) {
-  cv::Mat mat(height, width, CV_32FC3);
-  for (int i = 0; i < width * height; ++i) {
-    mat.ptr<cv::Vec3f>()[i] = cv::Vec3f(planes[4 * i], planes[4 * i + 1], planes[4 * i + 2]);
-  }
-  return mat;
-}
-
-// Disparity range of a level: ndisp halves (rounding up) with each level.
-int level_ndisp(int ndisp, int level) {
-  int n = ndisp;
-  for (int i = 0; i < level; ++i) n = (n + 1) / 2;
-  return std::max(n, 2);
-}
-
-// Random-generator iteration key: unique per (level, iteration); 0 is the initialisation.
-std::uint32_t iteration_key(int level, int iteration) {
-  return static_cast<std::uint32_t>(level * 64 + iteration);
-}
-
-void validate_inputs(const cv::Mat& left, const cv::Mat& right, const StereoParams& params) {
-  params.check();
-  if (left.empty() || right.empty()) throw InputError("stereo pair", "an image is empty");
-  if (left.type() != CV_8UC3 || right.type() != CV_8UC3) {
-    throw InputError("stereo pair", "images must be 8-bit RGB");
-  }
-  if (left.size() != right.size()) {
-    throw InputError("stereo pair", "left and right images differ in size");
-  }
-  if (params.ndisp > left.cols) {
-    throw InputError("parameter --ndisp", "is " + std::to_string(params.ndisp) +
-                                              ", wider than the image (" +
-                                              std::to_string(left.cols) + " px)");
-  }
 }
 
 }  // namespace
@@ -82,9 +39,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   };
   StereoResult result;
   const int threads = params.threads > 0 ? params.threads : omp_get_num_procs();
-  const int levels = params.method == StereoMethod::PMS
-                         ? 1
-                         : pyramid_level_count(left_rgb8.cols, left_rgb8.rows, params.coarsest_width);
+  const int levels = pipeline_level_count(params, left_rgb8.cols, left_rgb8.rows);
 
   auto start = Clock::now();
   const std::vector<ViewImage> pyramid[2] = {build_pyramid(left_rgb8, levels),
@@ -96,25 +51,22 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   std::vector<float> confidence[2];  // of the current level, from the coarser one
   for (int level = levels - 1; level >= 0; --level) {
     start = Clock::now();
-    const bool coarsest = level == levels - 1;
     LevelInputs in;
     in.views[PMS_VIEW_LEFT] = &pyramid[PMS_VIEW_LEFT][level];
     in.views[PMS_VIEW_RIGHT] = &pyramid[PMS_VIEW_RIGHT][level];
-    in.weights = weights.data();
-    in.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
-               params.tau_color, params.tau_gradient};
-    in.ndisp = level_ndisp(params.ndisp, level);
-    in.seed = params.seed;
-    in.threads = threads;
     const int width = in.views[0]->width;
     const int height = in.views[0]->height;
-    const std::string level_name = "level " + std::to_string(level) + " (" +
-                                   std::to_string(width) + "x" + std::to_string(height) + ")";
+    const LevelPlan plan = plan_level(params, level, levels, width, height);
+    in.weights = weights.data();
+    in.cost = plan.cost;
+    in.ndisp = plan.ndisp;
+    in.seed = params.seed;
+    in.threads = threads;
 
     // Start from random planes on the coarsest level, from the coarser level's planes
     // elsewhere.
     for (int view = 0; view < 2; ++view) {
-      if (coarsest) {
+      if (plan.coarsest) {
         init_random_planes(in, view, iteration_key(level, 0), fields[view]);
       } else {
         PlaneField coarse = std::move(fields[view]);
@@ -126,31 +78,21 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       }
     }
 
-    SearchSchedule schedule;
-    schedule.initial_range = 0.5f * static_cast<float>(in.ndisp);
-    if (!coarsest) schedule.initial_range = std::min(schedule.initial_range, params.fine_search_range);
-    schedule.normal_range = params.max_normal_delta;
-    schedule.min_range = params.min_search_range;
-    schedule.confident_threshold = params.confident_threshold;
-    schedule.confident_max_range = params.confident_max_range;
-
-    const int iterations = coarsest ? params.iterations : params.iterations_fine;
-    for (int iteration = 1; iteration <= iterations; ++iteration) {
-      report(level_name + ", iteration " + std::to_string(iteration) + "/" +
-             std::to_string(iterations));
+    for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
+      report(plan.iteration_label(iteration));
       for (int view = 0; view < 2; ++view) {
-        const std::vector<float>* trusted = coarsest ? nullptr : &confidence[view];
+        const std::vector<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
         for (int colour = 0; colour < 2; ++colour) {
           propagate_spatial(in, view, colour, fields[view]);
           propagate_view(in, view, colour, fields[1 - view], fields[view]);
-          refine_random(in, view, colour, iteration_key(level, iteration), schedule, trusted,
-                        fields[view]);
+          refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
+                        trusted, fields[view]);
         }
       }
     }
 
     // The confidence that steers the next level's random search.
-    if (level > 0) {
+    if (plan.compute_confidence) {
       const std::vector<float> disparity[2] = {plane_disparities(fields[0], threads),
                                                plane_disparities(fields[1], threads)};
       for (int view = 0; view < 2; ++view) {
@@ -158,7 +100,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
             lr_confidence(disparity[view], disparity[1 - view], width, height, view, threads);
       }
     }
-    result.timings.push_back({level_name, seconds_since(start)});
+    result.timings.push_back({plan.name, seconds_since(start)});
   }
 
   // Post-processing on the finest level.
@@ -178,8 +120,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   std::vector<float> disparity = weighted_median_filled(
       plane_disparities(filled, threads), consistent, pyramid[PMS_VIEW_LEFT][0],
       median_weights.data(), params.median_window / 2, params.window_step, threads);
-  const float max_disparity = static_cast<float>(params.ndisp - 1);
-  for (float& d : disparity) d = std::min(std::max(d, 0.0f), max_disparity);
+  clamp_to_disparity_range(disparity, params);
   result.timings.push_back({"post-processing", seconds_since(start)});
 
   result.disparity = to_mat(disparity, width, height, 1);

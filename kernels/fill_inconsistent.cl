@@ -1,7 +1,7 @@
 /* Inconsistent pixels take the background plane of the nearest consistent pixels on
  * their row; consistent pixels copy theirs (reference: fill_inconsistent, which starts
  * from a copy of `planes`, so the fourth component is always copied). */
-#include "postprocess_math_cl.h"
+#include "postprocess_math.h"
 #include "pms_kernel_support.h"
 
 __kernel void fill_inconsistent(const __global float* planes, const __global uchar* consistent,

@@ -1,6 +1,6 @@
 /* 1 where the left disparity and the right disparity it points at agree within
  * `tolerance` (reference: left_right_check). */
-#include "postprocess_math_cl.h"
+#include "postprocess_math.h"
 #include "pms_kernel_support.h"
 
 __kernel void left_right_check(const __global float* left_disparity,

@@ -1,6 +1,6 @@
 /* C(p) = 1 / (1 + |d(p) - d_other(p')|) for every pixel of one view
  * (reference: lr_confidence). */
-#include "postprocess_math_cl.h"
+#include "postprocess_math.h"
 #include "pms_kernel_support.h"
 
 __kernel void lr_confidence(const __global float* disparity,

@@ -102,7 +102,7 @@ PMS_INLINE float pms_weighted_median(const float* values, const float* weights,
                                      const float* sorted_values, int n) {
   float total = 0.0f;
   for (int i = 0; i < n; ++i) total = total + weights[i];
-  float half = total * 0.5f;
+  float half_total = total * 0.5f;
   int lo = 0;
   int hi = n - 1;
   while (lo < hi) {
@@ -112,7 +112,7 @@ PMS_INLINE float pms_weighted_median(const float* values, const float* weights,
     for (int i = 0; i < n; ++i) {
       if (values[i] <= v) below = below + weights[i];
     }
-    if (below >= half) {
+    if (below >= half_total) {
       hi = mid;
     } else {
       lo = mid + 1;

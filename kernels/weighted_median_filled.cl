@@ -1,6 +1,6 @@
 /* Weighted median of the window's disparities for every inconsistent pixel; consistent
  * pixels copy theirs (reference: weighted_median_filled). */
-#include "postprocess_math_cl.h"
+#include "postprocess_math.h"
 #include "pms_kernel_support.h"
 
 /* Private sample arrays: the host passes (2 (radius / step) + 1)^2 for the run's window,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -144,4 +145,58 @@ TEST_F(Cli, RejectsAnOutputInAMissingFolderWithoutLeavingFiles) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find(bad_output), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "no_such_dir"));
+}
+
+TEST_F(Cli, DevicesListsWhatOpenClSees) {
+  RunResult r = run_flexsight("devices", dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;  // PoCL is installed wherever the tests run
+  EXPECT_NE(r.out.find("| compute units |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| 0 (default) | 0: "), std::string::npos) << r.out;
+  EXPECT_TRUE(r.out.find("| CPU |") != std::string::npos ||
+              r.out.find("| GPU |") != std::string::npos ||
+              r.out.find("| accelerator |") != std::string::npos)
+      << r.out;
+}
+
+TEST_F(Cli, OpenClAndReferenceWriteTheSameBytes) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  const std::string opencl_pfm = (dir_ / "opencl.pfm").string();
+  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  EXPECT_NE(reference.out.find("| stage (reference path) |"), std::string::npos) << reference.out;
+  RunResult opencl = run_flexsight(pair + " -o " + opencl_pfm + " --device opencl", dir_);
+  ASSERT_EQ(opencl.exit_code, 0) << opencl.err;
+  EXPECT_NE(opencl.out.find("| stage (OpenCL path on #"), std::string::npos) << opencl.out;
+
+  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
+  const cv::Mat actual = flexsight::read_pfm(opencl_pfm);
+  ASSERT_EQ(expected.type(), actual.type());
+  ASSERT_EQ(expected.size(), actual.size());
+  ASSERT_TRUE(expected.isContinuous() && actual.isContinuous());
+  EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
+}
+
+TEST_F(Cli, RejectsAnUnknownDevice) {
+  expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --device bogus",
+                  "--device");
+}
+
+TEST_F(Cli, RejectsAnOpenClDeviceThatDoesNotExist) {
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ +
+                                  " --ndisp 16 --device opencl --cl-device 99" + quick(),
+                              dir_);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("--cl-device"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no OpenCL device matches '99'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(output_));
+}
+
+TEST_F(Cli, ProfilePrintsTheTimePerKernel) {
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ +
+                                  " --ndisp 16 --device opencl --profile" + quick(),
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| kernel | calls | total ms | mean ms |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| propagate_spatial | "), std::string::npos) << r.out;
 }

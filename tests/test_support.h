@@ -2,10 +2,18 @@
 // Helpers shared by the matcher tests: fixture paths, synthetic images, byte compares.
 #include <cstring>
 #include <filesystem>
+#include <ostream>
 #include <opencv2/core.hpp>
 #include <random>
 #include <string>
 #include <vector>
+
+#include "fallback/stereo_params.h"
+
+namespace flexsight {
+// Readable test parameter names in ctest output instead of raw bytes.
+inline void PrintTo(StereoMethod method, std::ostream* os) { *os << method_name(method); }
+}  // namespace flexsight
 
 namespace flexsight::testing_support {
 

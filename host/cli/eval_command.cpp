@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "host/cli/arguments.h"
+#include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/eval/colorize.h"
 #include "host/eval/dataset.h"
@@ -44,6 +47,7 @@ struct EvalOptions {
   std::vector<std::string> scene_names;  // empty = every scene
   float max_disp_color = 0;              // 0 = each scene's ndisp
   StereoParams params;
+  BackendOptions backend;
 };
 
 void print_help() {
@@ -56,7 +60,7 @@ void print_help() {
                "  --scenes A,B,C         only these scenes\n"
                "  --max-disp-color N     disparity shown as the top colour (default: the scene's ndisp)\n"
                "The disparity range (ndisp) comes from each scene; --ndisp is rejected.\n"
-               "Stereo params:\n"
+            << backend_options_help() << "Stereo params:\n"
             << stereo_params_help();
 }
 
@@ -91,6 +95,7 @@ EvalOptions parse_options(std::vector<std::string> args) {
     throw InputError("option --ndisp", "eval takes ndisp from each scene; remove the option");
   }
   consume_stereo_params(args, options.params);
+  options.backend = take_backend_options(args);
   options.results_dir = take_option(args, "--results");
   const std::string out = take_option(args, "--out");
   if (!out.empty()) options.out_dir = out;
@@ -171,15 +176,20 @@ struct MatchOutcome {
   double seconds = 0;
 };
 
-MatchOutcome run_matcher(const Scene& scene, StereoParams params, const std::string& tag) {
+MatchOutcome run_matcher(StereoBackend& backend, const Scene& scene, StereoParams params,
+                         const std::string& tag) {
   const StereoPair pair = load_stereo_pair(scene.left_path, scene.right_path);
   params.ndisp = scene.ndisp;
   const auto progress = [&tag](const std::string& stage) {
     std::cerr << tag << ": " << stage << "\n";
   };
   const auto start = std::chrono::steady_clock::now();
-  StereoResult result = run_stereo(pair.left, pair.right, params, progress);
+  std::string used;
+  StereoResult result = backend.run(pair.left, pair.right, params, progress, &used);
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3f s", elapsed.count());
+  std::cerr << tag << ": " << seconds << " on the " << used << "\n";
   return {result.disparity, elapsed.count()};
 }
 
@@ -209,14 +219,16 @@ void check_scenes_before_running(const std::vector<Scene>& scenes, const EvalOpt
   }
 }
 
-SceneReport evaluate_scene(const Scene& scene, const EvalOptions& options, const std::string& tag) {
+// `backend`: null when the results are read from files.
+SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const EvalOptions& options,
+                           const std::string& tag) {
   // Ground truth first: a broken dataset fails before minutes of matching.
   const GroundTruth truth = load_ground_truth(scene);
   const std::string out = (fs::path(options.out_dir) / scene.name).string();
 
   MatchOutcome outcome;
   if (options.results_dir.empty()) {
-    outcome = run_matcher(scene, options.params, tag);
+    outcome = run_matcher(*backend, scene, options.params, tag);
     if (outcome.disparity.size() != truth.disparity.size()) {
       throw InputError(scene.gt_path, "ground truth differs in size from the images");
     }
@@ -256,6 +268,12 @@ int run_eval_command(std::vector<std::string> args) {
       select_scenes(discover_scenes(options.dataset_root), options.scene_names);
   check_scenes_before_running(scenes, options);
   make_output_dir(options.out_dir);
+  // The device is chosen and the kernels are built once, for every scene.
+  std::unique_ptr<StereoBackend> backend;
+  if (options.results_dir.empty()) {
+    backend = std::make_unique<StereoBackend>(options.backend);
+    std::cerr << "matching with the " << backend->planned() << "\n";
+  }
 
   EvalReport report;
   report.dataset_root = options.dataset_root;
@@ -265,7 +283,7 @@ int run_eval_command(std::vector<std::string> args) {
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string tag = "[" + std::to_string(i + 1) + "/" + std::to_string(scenes.size()) +
                             "] " + scenes[i].name;
-    report.scenes.push_back(evaluate_scene(scenes[i], options, tag));
+    report.scenes.push_back(evaluate_scene(backend.get(), scenes[i], options, tag));
   }
 
   const std::string markdown = to_markdown(report);

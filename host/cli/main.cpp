@@ -15,6 +15,7 @@ void print_usage() {
                "  stereo LEFT RIGHT -o DISP.pfm [options]   match a rectified pair\n"
                "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
                "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
+               "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
 
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "stereo") return flexsight::run_stereo_command(args);
     if (command == "eval") return flexsight::run_eval_command(args);
+    if (command == "devices") return flexsight::run_devices_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();
       return 0;

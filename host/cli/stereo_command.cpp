@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "host/cli/arguments.h"
+#include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/eval/colorize.h"
 #include "host/eval/metrics.h"
@@ -15,6 +16,7 @@
 #include "host/io/input_error.h"
 #include "host/io/middlebury_v2.h"
 #include "host/io/pfm.h"
+#include "host/pipeline_rules.h"
 #include "host/stereo_pipeline.h"
 
 namespace flexsight {
@@ -32,9 +34,9 @@ void print_help() {
                "  --raw RAW.pfm               left disparity before post-processing (PFM)\n"
                "  --gt GT.pfm                 ground truth: print bad-N and average error\n"
                "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
-               "  --device reference|auto     matcher backend (this build: reference)\n"
+               "  --profile                   print the device time per OpenCL kernel\n"
                "  --quiet                     no progress lines\n"
-               "Matcher parameters:\n"
+            << backend_options_help() << "Matcher parameters:\n"
             << stereo_params_help();
 }
 
@@ -99,6 +101,25 @@ void print_scores(const cv::Mat& disparity, const StereoJob& job) {
   std::printf("(errors in pixels at this resolution; pixels without a result count as bad)\n");
 }
 
+// --profile: device time per kernel, from the OpenCL events of the run.
+void print_kernel_timings(const std::vector<opencl::KernelTiming>& timings) {
+  if (timings.empty()) {
+    std::cerr << "note: --profile: the reference path ran, so there are no kernel times\n";
+    return;
+  }
+  std::printf("\n| kernel | calls | total ms | mean ms |\n|---|---|---|---|\n");
+  int calls = 0;
+  double seconds = 0;
+  for (const opencl::KernelTiming& t : timings) {
+    std::printf("| %s | %d | %.3f | %.3f |\n", t.kernel.c_str(), t.launches, t.seconds * 1e3,
+                t.launches > 0 ? t.seconds * 1e3 / t.launches : 0.0);
+    calls += t.launches;
+    seconds += t.seconds;
+  }
+  std::printf("| all kernels | %d | %.3f | %.3f |\n", calls, seconds * 1e3,
+              calls > 0 ? seconds * 1e3 / calls : 0.0);
+}
+
 }  // namespace
 
 int run_stereo_command(std::vector<std::string> args) {
@@ -115,17 +136,11 @@ int run_stereo_command(std::vector<std::string> args) {
   const std::string raw = take_option(args, "--raw");
   std::string gt = take_option(args, "--gt");
   std::string gt_mask = take_option(args, "--gt-mask");
-  std::string device = take_option(args, "--device");
+  BackendOptions backend_options = take_backend_options(args);
+  backend_options.profile = take_flag(args, "--profile");
   const bool quiet = take_flag(args, "--quiet");
   reject_unknown_options(args);
   if (output.empty()) throw InputError("option -o", "an output PFM path is required");
-  if (device.empty()) device = "auto";
-  if (device != "reference" && device != "auto") {
-    throw InputError("option --device", "unknown device '" + device + "' (this build has: reference, auto)");
-  }
-  if (device == "auto") {
-    std::cerr << "note: this build has no OpenCL path yet; running the reference path\n";
-  }
 
   StereoJob job = resolve_inputs(args, params, ndisp_given);
   if (!gt.empty()) job.gt = gt;
@@ -135,18 +150,22 @@ int run_stereo_command(std::vector<std::string> args) {
 
   ProgressCallback progress;
   if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
+  validate_inputs(pair.left, pair.right, params);  // before the kernels are built
+  StereoBackend backend(backend_options);
   std::cerr << method_name(params.method) << " on " << pair.left.cols << "x" << pair.left.rows
-            << ", ndisp " << params.ndisp << ", reference path\n";
-  const StereoResult result = run_stereo(pair.left, pair.right, params, progress);
+            << ", ndisp " << params.ndisp << ", " << backend.planned() << "\n";
+  std::string used;
+  const StereoResult result = backend.run(pair.left, pair.right, params, progress, &used);
 
   write_pfm(output, result.disparity);
   if (!raw.empty()) write_pfm(raw, result.raw_left);
   if (!png.empty()) {
     write_image(png, colorize_disparity(result.disparity, static_cast<float>(params.ndisp)));
   }
-  std::printf("| stage | seconds |\n|---|---|\n");
+  std::printf("| stage (%s) | seconds |\n|---|---|\n", used.c_str());
   for (const StageTiming& t : result.timings) std::printf("| %s | %.3f |\n", t.stage.c_str(), t.seconds);
   std::printf("| total | %.3f |\n", result.total_seconds());
+  if (backend_options.profile) print_kernel_timings(backend.kernel_timings());
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
   if (!job.gt.empty()) print_scores(result.disparity, job);
   return 0;

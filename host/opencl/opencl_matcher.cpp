@@ -1,15 +1,17 @@
 // The OpenCL scheduler: host/stereo_pipeline.cpp's stage list, stage for stage, with
-// device buffers in place of the reference's vectors. Keep the two in step: the
-// pipeline tests compare their results byte for byte.
+// device buffers in place of the reference's vectors. The rules that decide the bytes
+// (validation, levels, iterations, search schedule, keys, clamp) come from
+// host/pipeline_rules.h for both; keep the stage order in step too: the pipeline tests
+// compare the results byte for byte.
 #include "host/opencl/opencl_matcher.h"
 
-#include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "fallback/image_pyramid.h"
 #include "fallback/weight_table.h"
 #include "host/opencl/opencl_stages.h"
-#include "host/opencl/pipeline_mirror.h"
+#include "host/pipeline_rules.h"
 
 namespace flexsight::opencl {
 namespace {
@@ -38,7 +40,7 @@ std::vector<DeviceView> build_device_pyramid(OpenClStages& stages, const cv::Mat
   std::vector<DeviceView> pyramid;
   pyramid.reserve(levels);
   pyramid.push_back(make_view(stages.context(), rgb8.cols, rgb8.rows, name));
-  pyramid.back().color.write(color_floats(rgb8));
+  pyramid.back().color.write(view_color(rgb8));
   stages.compute_gradient(pyramid.back());
   for (int level = 1; level < levels; ++level) {
     const DeviceView& fine = pyramid.back();
@@ -80,14 +82,24 @@ std::vector<std::string> list_opencl_devices() {
 }
 
 OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
-  const DeviceInfo device = select_device(options.device);
+  DeviceInfo device;
+  try {
+    device = select_device(options.platform, options.device);
+  } catch (const OpenClError& error) {
+    throw OpenClError(std::string("selecting the OpenCL device: ") + error.what(), error.status());
+  }
   if (!device.correctly_rounded_divide_sqrt) {
-    throw OpenClError("device '" + device.name +
-                          "' has no correctly rounded single-precision divide and sqrt, so "
+    throw OpenClError("selecting the OpenCL device: " + device.description() +
+                          " has no correctly rounded single-precision divide and sqrt, so "
                           "its results could not match the reference",
                       CL_INVALID_DEVICE);
   }
-  state_ = std::make_unique<State>(device, options.profile);
+  try {
+    state_ = std::make_unique<State>(device, options.profile);
+  } catch (const OpenClError& error) {
+    throw OpenClError("building the kernels on " + device.description() + ": " + error.what(),
+                      error.status());
+  }
 }
 
 OpenClMatcher::~OpenClMatcher() = default;
@@ -102,17 +114,29 @@ std::string OpenClMatcher::device_description() const {
 
 StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                                 const StereoParams& params, const ProgressCallback& progress) {
+  std::string stage = "start";
+  try {
+    return run_stages(left_rgb8, right_rgb8, params, progress, stage);
+  } catch (const OpenClError& error) {
+    throw OpenClError("running on " + device_description() + ", " + stage + ": " + error.what(),
+                      error.status());
+  }
+}
+
+StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                                       const StereoParams& params,
+                                       const ProgressCallback& progress, std::string& stage) {
   validate_inputs(left_rgb8, right_rgb8, params);
   auto report = [&](const std::string& what) {
+    stage = what;
     if (progress) progress(what);
   };
+  stage = "pyramid";
   Context& context = state_->context;
   OpenClStages& stages = state_->stages;
   state_->profiler.clear();
   StereoResult result;
-  const int levels = params.method == StereoMethod::PMS
-                         ? 1
-                         : pyramid_level_count(left_rgb8.cols, left_rgb8.rows, params.coarsest_width);
+  const int levels = pipeline_level_count(params, left_rgb8.cols, left_rgb8.rows);
 
   auto start = Clock::now();
   const std::vector<DeviceView> pyramid[2] = {
@@ -126,23 +150,21 @@ StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
   Buffer<float> confidence[2];  // of the current level, from the coarser one
   for (int level = levels - 1; level >= 0; --level) {
     start = Clock::now();
-    const bool coarsest = level == levels - 1;
     DeviceLevel in;
     in.views[PMS_VIEW_LEFT] = &pyramid[PMS_VIEW_LEFT][level];
     in.views[PMS_VIEW_RIGHT] = &pyramid[PMS_VIEW_RIGHT][level];
-    in.weights = &weights;
-    in.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
-               params.tau_color, params.tau_gradient};
-    in.ndisp = level_ndisp(params.ndisp, level);
-    in.seed = params.seed;
     const int width = in.views[0]->width;
     const int height = in.views[0]->height;
     const size_t pixels = static_cast<size_t>(width) * height;
-    const std::string level_name = "level " + std::to_string(level) + " (" +
-                                   std::to_string(width) + "x" + std::to_string(height) + ")";
+    const LevelPlan plan = plan_level(params, level, levels, width, height);
+    stage = plan.name;
+    in.weights = &weights;
+    in.cost = plan.cost;
+    in.ndisp = plan.ndisp;
+    in.seed = params.seed;
 
     for (int view = 0; view < 2; ++view) {
-      if (coarsest) {
+      if (plan.coarsest) {
         fields[view] = make_field(context, width, height, kViewNames[view]);
         stages.init_random_planes(in, view, iteration_key(level, 0), fields[view]);
       } else {
@@ -157,33 +179,21 @@ StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
       }
     }
 
-    SearchSchedule schedule;
-    schedule.initial_range = 0.5f * static_cast<float>(in.ndisp);
-    if (!coarsest) {
-      schedule.initial_range = std::min(schedule.initial_range, params.fine_search_range);
-    }
-    schedule.normal_range = params.max_normal_delta;
-    schedule.min_range = params.min_search_range;
-    schedule.confident_threshold = params.confident_threshold;
-    schedule.confident_max_range = params.confident_max_range;
-
-    const int iterations = coarsest ? params.iterations : params.iterations_fine;
-    for (int iteration = 1; iteration <= iterations; ++iteration) {
-      report(level_name + ", iteration " + std::to_string(iteration) + "/" +
-             std::to_string(iterations));
+    for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
+      report(plan.iteration_label(iteration));
       for (int view = 0; view < 2; ++view) {
-        const Buffer<float>* trusted = coarsest ? nullptr : &confidence[view];
+        const Buffer<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
         for (int colour = 0; colour < 2; ++colour) {
           stages.propagate_spatial(in, view, colour, fields[view]);
           stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
-          stages.refine_random(in, view, colour, iteration_key(level, iteration), schedule,
+          stages.refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
                                trusted, fields[view]);
         }
       }
     }
 
     // The confidence that steers the next level's random search.
-    if (level > 0) {
+    if (plan.compute_confidence) {
       Buffer<float> disparity[2] = {Buffer<float>(context, pixels, "disparity (left)"),
                                     Buffer<float>(context, pixels, "disparity (right)")};
       for (int view = 0; view < 2; ++view) stages.plane_disparities(fields[view], disparity[view]);
@@ -194,7 +204,7 @@ StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
       }
     }
     context.finish();
-    result.timings.push_back({level_name, seconds_since(start)});
+    result.timings.push_back({plan.name, seconds_since(start)});
   }
 
   // Post-processing on the finest level.
@@ -221,8 +231,7 @@ StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
                                 median_weights, params.median_window / 2, params.window_step,
                                 filtered);
   std::vector<float> disparity = filtered.read();
-  const float max_disparity = static_cast<float>(params.ndisp - 1);
-  for (float& d : disparity) d = std::min(std::max(d, 0.0f), max_disparity);
+  clamp_to_disparity_range(disparity, params);
   const std::vector<float> raw_left = raw[PMS_VIEW_LEFT].read();
   const std::vector<float> raw_right = raw[PMS_VIEW_RIGHT].read();
   const std::vector<float> planes = filled.planes.read();

@@ -13,11 +13,15 @@
 namespace flexsight::opencl {
 
 struct OpenClOptions {
-  // Device selector: empty for the first GPU (else the first device), a number for an
-  // index of list_opencl_devices(), otherwise part of "<platform> <device>" names.
+  // Device selector: empty for the first usable GPU (else the first usable device), a
+  // number for an index of list_opencl_devices() (of the platform's devices when
+  // `platform` is set), otherwise part of "<platform> <device>" names.
   std::string device;
   // Record every kernel launch's device time (see OpenClMatcher::kernel_timings).
   bool profile = false;
+  // Platform selector: empty for every platform, a number for the platform's position,
+  // otherwise part of its name.
+  std::string platform;
 };
 
 // True when at least one OpenCL device exists; otherwise false, with the reason in
@@ -31,14 +35,18 @@ std::vector<std::string> list_opencl_devices();
 // Holds the device and its built programs across runs (building costs seconds).
 class OpenClMatcher {
  public:
-  // Throws OpenClError when no device matches or the kernels do not build.
+  // Throws OpenClError when no device matches or the kernels do not build; the message
+  // starts with the step ("selecting the OpenCL device: ...", "building the kernels on
+  // #0 ...: ...").
   explicit OpenClMatcher(const OpenClOptions& options = {});
   ~OpenClMatcher();
   OpenClMatcher(const OpenClMatcher&) = delete;
   OpenClMatcher& operator=(const OpenClMatcher&) = delete;
 
   // As run_stereo: same validation (InputError), same result bytes. The timings are
-  // wall-clock per stage group, measured after the device finished it.
+  // wall-clock per stage group, measured after the device finished it. A failing
+  // OpenCL call (e.g. out of device memory) throws OpenClError whose message starts
+  // with the device and the stage ("running on #0 ..., level 1 (...): ...").
   StereoResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                    const StereoParams& params, const ProgressCallback& progress = {});
 
@@ -49,6 +57,11 @@ class OpenClMatcher {
   std::string device_description() const;
 
  private:
+  // run() without the error context; `stage` follows the stage that runs.
+  StereoResult run_stages(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                          const StereoParams& params, const ProgressCallback& progress,
+                          std::string& stage);
+
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -35,9 +35,13 @@ Crop fixture_crop() {
 }
 
 OpenClMatcher& matcher() {
-  static OpenClMatcher shared(OpenClOptions{
-      std::getenv("FLEXSIGHT_OPENCL_DEVICE") ? std::getenv("FLEXSIGHT_OPENCL_DEVICE") : "",
-      true});
+  static OpenClMatcher shared([] {
+    OpenClOptions options;
+    const char* device = std::getenv("FLEXSIGHT_OPENCL_DEVICE");
+    options.device = device ? device : "";
+    options.profile = true;
+    return options;
+  }());
   return shared;
 }
 

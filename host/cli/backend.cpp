@@ -1,0 +1,199 @@
+#include "host/cli/backend.h"
+
+#include <iostream>
+
+#include "host/cli/arguments.h"
+#include "host/io/input_error.h"
+
+#if defined(FLEXSIGHT_HAVE_OPENCL)
+#include "host/opencl/cl_device.h"
+#include "host/opencl/opencl_matcher.h"
+#endif
+
+namespace flexsight {
+namespace {
+
+const char* const kReferencePath = "reference path";
+
+// One line: the first of `why` (a build log may follow on further lines, which
+// --device opencl shows in full).
+void notice_fallback(const std::string& why) {
+  std::string line = why.substr(0, why.find('\n'));
+  if (line.size() < why.size()) {
+    while (!line.empty() && (line.back() == ':' || line.back() == ' ')) line.pop_back();
+    line += " (in full with --device opencl)";
+  }
+  std::cerr << "note: --device auto: " << line << "; running the reference path\n";
+}
+
+}  // namespace
+
+BackendOptions take_backend_options(std::vector<std::string>& args) {
+  BackendOptions options;
+  const std::string device = take_option(args, "--device");
+  if (device.empty() || device == "auto") {
+    options.kind = BackendKind::Auto;
+  } else if (device == "opencl") {
+    options.kind = BackendKind::OpenCl;
+  } else if (device == "reference") {
+    options.kind = BackendKind::Reference;
+  } else {
+    throw InputError("option --device", "expected auto, opencl or reference, got '" + device + "'");
+  }
+  options.cl_platform = take_option(args, "--cl-platform");
+  options.cl_device = take_option(args, "--cl-device");
+  const auto reject_with_reference = [&options](const std::string& value, const char* option) {
+    if (options.kind == BackendKind::Reference && !value.empty()) {
+      throw InputError(std::string("option ") + option,
+                       "selects an OpenCL device, but --device reference runs no OpenCL");
+    }
+  };
+  reject_with_reference(options.cl_platform, "--cl-platform");
+  reject_with_reference(options.cl_device, "--cl-device");
+  return options;
+}
+
+std::string backend_options_help() {
+  return "  --device auto|opencl|reference\n"
+         "                              matcher backend; auto (default): OpenCL when a usable\n"
+         "                              device exists, else the reference path (same bytes)\n"
+         "  --cl-platform N|NAME        OpenCL platform: its number or part of its name\n"
+         "                              (see 'flexsight devices')\n"
+         "  --cl-device N|NAME          OpenCL device: its number (within --cl-platform when\n"
+         "                              given) or part of its name\n";
+}
+
+#if defined(FLEXSIGHT_HAVE_OPENCL)
+
+struct StereoBackend::Impl {
+  BackendOptions options;
+  std::unique_ptr<opencl::OpenClMatcher> matcher;  // null: the reference path
+  std::vector<opencl::KernelTiming> kernel_timings;
+};
+
+StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  if (options.kind == BackendKind::Reference) return;
+  const bool forced = options.kind == BackendKind::OpenCl;
+  std::string why;
+  if (!opencl::opencl_available(&why)) {
+    if (forced) throw InputError("--device opencl", "selecting the OpenCL device: " + why);
+    notice_fallback("no usable OpenCL device (" + why + ")");
+    return;
+  }
+  try {
+    opencl::OpenClOptions cl;
+    cl.platform = options.cl_platform;
+    cl.device = options.cl_device;
+    cl.profile = options.profile;
+    impl_->matcher = std::make_unique<opencl::OpenClMatcher>(cl);
+  } catch (const opencl::OpenClError& error) {
+    // A selector that matches nothing is a typo, not a missing device: an error naming
+    // the option, under auto too, so that it never changes the backend silently.
+    if (error.status() == CL_INVALID_PLATFORM && !options.cl_platform.empty()) {
+      throw InputError("option --cl-platform", error.what());
+    }
+    if (error.status() == CL_DEVICE_NOT_FOUND && !options.cl_device.empty()) {
+      throw InputError("option --cl-device", error.what());
+    }
+    if (forced) throw InputError("--device opencl", error.what());
+    notice_fallback(error.what());
+  }
+}
+
+std::string StereoBackend::planned() const {
+  return impl_->matcher ? "OpenCL path on " + impl_->matcher->device_description()
+                        : kReferencePath;
+}
+
+StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                                const StereoParams& params, const ProgressCallback& progress,
+                                std::string* used) {
+  impl_->kernel_timings.clear();
+  if (impl_->matcher) {
+    try {
+      StereoResult result = impl_->matcher->run(left_rgb8, right_rgb8, params, progress);
+      if (impl_->options.profile) impl_->kernel_timings = impl_->matcher->kernel_timings();
+      if (used) *used = planned();
+      return result;
+    } catch (const opencl::OpenClError& error) {
+      if (impl_->options.kind == BackendKind::OpenCl) {
+        throw InputError("--device opencl", error.what());
+      }
+      notice_fallback(error.what());
+    }
+  }
+  if (used) *used = kReferencePath;
+  return run_stereo(left_rgb8, right_rgb8, params, progress);
+}
+
+std::vector<opencl::KernelTiming> StereoBackend::kernel_timings() const {
+  return impl_->kernel_timings;
+}
+
+std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
+  std::vector<OpenClDeviceRow> rows;
+  try {
+    const std::vector<opencl::DeviceInfo> devices = opencl::enumerate_devices();
+    if (devices.empty()) {
+      if (why) *why = "no OpenCL platform with a device is installed";
+      return rows;
+    }
+    const int default_index = opencl::select_device("", "").index;
+    for (const opencl::DeviceInfo& d : devices) {
+      OpenClDeviceRow row;
+      row.index = d.index;
+      row.platform_index = d.platform_index;
+      row.index_in_platform = d.index_in_platform;
+      row.platform = d.platform_name;
+      row.name = d.name;
+      row.type = d.type_name();
+      row.version = d.version;
+      row.compute_units = d.compute_units;
+      row.global_memory = d.global_memory;
+      row.correctly_rounded_divide_sqrt = d.correctly_rounded_divide_sqrt;
+      row.is_default = d.index == default_index;
+      rows.push_back(row);
+    }
+  } catch (const opencl::OpenClError& error) {
+    rows.clear();
+    if (why) *why = error.what();
+  }
+  return rows;
+}
+
+#else  // no OpenCL SDK when this build was configured: the reference path only
+
+namespace {
+const char* const kNoOpenCl =
+    "this build has no OpenCL path (no OpenCL SDK was found when it was configured)";
+}  // namespace
+
+struct StereoBackend::Impl {};
+
+StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_unique<Impl>()) {
+  if (options.kind == BackendKind::OpenCl) throw InputError("--device opencl", kNoOpenCl);
+  if (options.kind == BackendKind::Auto) notice_fallback(kNoOpenCl);
+}
+
+std::string StereoBackend::planned() const { return kReferencePath; }
+
+StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                                const StereoParams& params, const ProgressCallback& progress,
+                                std::string* used) {
+  if (used) *used = kReferencePath;
+  return run_stereo(left_rgb8, right_rgb8, params, progress);
+}
+
+std::vector<opencl::KernelTiming> StereoBackend::kernel_timings() const { return {}; }
+
+std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
+  if (why) *why = kNoOpenCl;
+  return {};
+}
+
+#endif
+
+StereoBackend::~StereoBackend() = default;
+
+}  // namespace flexsight

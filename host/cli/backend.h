@@ -1,0 +1,93 @@
+#pragma once
+// Which matcher runs a pair, for the stereo and eval commands: the OpenCL path
+// (host/opencl/, when this build has it) or the reference path (run_stereo), chosen by
+// --device auto|opencl|reference, --cl-platform and --cl-device.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/opencl/kernel_timing.h"
+#include "host/stereo_pipeline.h"
+
+namespace flexsight {
+
+enum class BackendKind {
+  Auto,       // OpenCL when a usable device exists, else the reference path (with a notice)
+  OpenCl,     // OpenCL or an error
+  Reference,  // the scalar reference path
+};
+
+struct BackendOptions {
+  BackendKind kind = BackendKind::Auto;
+  // --cl-platform: a platform's number or part of its name; "" for every platform.
+  std::string cl_platform;
+  // --cl-device: a device's number (within --cl-platform when given) or part of its
+  // name; "" for the first GPU that rounds divide and sqrt correctly, else the first
+  // such device.
+  std::string cl_device;
+  // Record the device time of every kernel launch (see StereoBackend::kernel_timings).
+  bool profile = false;
+};
+
+// Removes --device, --cl-platform and --cl-device with their values from `args`.
+// Throws InputError naming the option for an unknown --device value, or for a --cl-*
+// option together with --device reference.
+BackendOptions take_backend_options(std::vector<std::string>& args);
+
+// The --help lines of those options.
+std::string backend_options_help();
+
+// The chosen matcher, kept across runs (building the OpenCL kernels takes seconds).
+// Notices (auto falling back to the reference path, and why) go to stderr, one line.
+class StereoBackend {
+ public:
+  // Picks the device and builds the kernels. Under opencl a failure throws InputError
+  // ("--device opencl: <step>: <reason>"), under auto it falls back to the reference
+  // path with a notice; a --cl-platform or --cl-device that matches nothing is an
+  // InputError naming that option, under auto too.
+  explicit StereoBackend(const BackendOptions& options);
+  ~StereoBackend();
+  StereoBackend(const StereoBackend&) = delete;
+  StereoBackend& operator=(const StereoBackend&) = delete;
+
+  // The path the next run() takes: "OpenCL path on #0 <device> (...)" or
+  // "reference path".
+  std::string planned() const;
+
+  // Matches the pair; `used` (when given) receives the path that produced the result.
+  // An OpenCL failure during the run (e.g. out of device memory) throws InputError
+  // under opencl and reruns the pair on the reference path, with a notice, under auto.
+  // InputError from the inputs themselves passes through.
+  StereoResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                   const StereoParams& params, const ProgressCallback& progress = {},
+                   std::string* used = nullptr);
+
+  // Per-kernel device times of the last run() when it ran on OpenCL with
+  // options.profile; empty otherwise.
+  std::vector<opencl::KernelTiming> kernel_timings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// One OpenCL device as `flexsight devices` lists it.
+struct OpenClDeviceRow {
+  int index = 0;              // the number --cl-device takes without --cl-platform
+  int platform_index = 0;     // the number --cl-platform takes
+  int index_in_platform = 0;  // the number --cl-device takes with --cl-platform
+  std::string platform;
+  std::string name;
+  std::string type;     // "GPU", "CPU", "accelerator", "other"
+  std::string version;  // CL_DEVICE_VERSION
+  unsigned compute_units = 0;
+  unsigned long long global_memory = 0;  // bytes
+  bool correctly_rounded_divide_sqrt = false;  // needed by the OpenCL path
+  bool is_default = false;  // the device --device auto/opencl picks without --cl-*
+};
+
+// Every device OpenCL sees; empty, with the reason in *why, when there is none or this
+// build has no OpenCL path.
+std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why);
+
+}  // namespace flexsight
