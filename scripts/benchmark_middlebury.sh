@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
-# The README's benchmark table: PPMS on every scene of a MiddEval3 quarter-resolution
-# folder, then PPMS and flat PMS on a subset (PMS is ~3x slower) for their time ratio,
-# all with default parameters, in one run. Reports, colored disparities and error maps
-# go to docs/benchmark/{ppms,ppms-subset,pms-subset}/.
+# The README's benchmark tables, in one run, with default parameters:
+#   1. PPMS, reference path, every scene of a MiddEval3 quarter-resolution folder;
+#   2. flat PMS, reference path, on a subset (it is ~3x slower), for the PPMS/PMS ratio;
+#   3. PPMS, OpenCL path (the first OpenCL device: PoCL on a machine without a GPU),
+#      every scene, for the OpenCL/reference ratio and the bit-exactness check.
+# Reports, colored disparities and error maps go to docs/benchmark/<run>/.
 # usage: scripts/benchmark_middlebury.sh [MIDDEVAL3_TRAININGQ_DIR] [PMS_SCENES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${1:-${FLEXSIGHT_DATASETS:-../shared/datasets}/MiddEval3-trainingQ}
 pms_scenes=${2:-ArtL,Teddy,Motorcycle}
 [ -x build/flexsight ] || scripts/setup.sh
-mkdir -p docs/benchmark
-if [ "${SKIP_FULL:-0}" != 1 ]; then
-  build/flexsight eval "$data" --method ppms --out docs/benchmark/ppms
-fi
-build/flexsight eval "$data" --method ppms --scenes "$pms_scenes" --out docs/benchmark/ppms-subset
-build/flexsight eval "$data" --method pms --scenes "$pms_scenes" --out docs/benchmark/pms-subset
-# Drop the per-scene PFMs: the pictures and the reports are what people read.
-rm -f docs/benchmark/*/*.pfm
+out=docs/benchmark
+mkdir -p "$out"
+build/flexsight eval "$data" --method ppms --device reference --out "$out/ppms-reference"
+build/flexsight eval "$data" --method pms --device reference --scenes "$pms_scenes" \
+  --out "$out/pms-reference"
+build/flexsight eval "$data" --method ppms --device opencl --out "$out/ppms-opencl"
+# The OpenCL result must equal the reference byte for byte, scene by scene.
+for reference in "$out"/ppms-reference/*_disp.pfm; do
+  cmp "$reference" "$out/ppms-opencl/$(basename "$reference")"
+done
+echo "OpenCL and reference disparities are identical for every scene"
+# The PFMs were needed for the comparison; the pictures and reports are what people read.
+rm -f "$out"/*/*.pfm
