@@ -111,4 +111,266 @@ inline void pms_best_store(const PmsBestPlane* best, __global float* planes, __g
   cost[index] = best->cost;
 }
 
+/* ------------------------------------------------- lanes: several pixels per item
+ *
+ * The cost kernels spend nearly all their time in pms_plane_cost. A CPU OpenCL driver
+ * (PoCL) cannot vectorise it across work items (its loops and early exits differ from
+ * pixel to pixel), so the hot kernels let each work item handle PMS_LANES pixels of one
+ * row and evaluate their costs together in vector types, one pixel per lane.
+ *
+ * Exactness: each lane performs pms_plane_cost's float operations in its order (the
+ * same expressions, component-wise; contraction is off), summing the window pixels
+ * inside the image in the same order; samples outside the image leave the lane's sum
+ * untouched (select, not "+ 0"). The only difference is the early exit: pms_plane_cost
+ * stops a row after its sum reaches `bound`, the lanes stop after every lane's has.
+ * Every term is >= 0 and rounding is monotone, so a lane that reached its bound ends
+ * >= bound either way and its caller (which keeps only costs < bound) rejects it
+ * either way; a lane that never reaches its bound sums the whole window, as the
+ * scalar function does. The host sets PMS_LANES (OpenClStages). */
+#ifndef PMS_LANES
+#define PMS_LANES 8
+#endif
+#if PMS_LANES == 4
+typedef float4 pms_floatv;
+typedef int4 pms_intv;
+#define PMS_VLOAD vload4
+#define PMS_TO_FLOATV convert_float4
+#define PMS_TO_INTV convert_int4
+#elif PMS_LANES == 8
+typedef float8 pms_floatv;
+typedef int8 pms_intv;
+#define PMS_VLOAD vload8
+#define PMS_TO_FLOATV convert_float8
+#define PMS_TO_INTV convert_int8
+#elif PMS_LANES == 16
+typedef float16 pms_floatv;
+typedef int16 pms_intv;
+#define PMS_VLOAD vload16
+#define PMS_TO_FLOATV convert_float16
+#define PMS_TO_INTV convert_int16
+#else
+#error "PMS_LANES must be 4, 8 or 16"
+#endif
+
+/* Eight floats base[index.s0], ..., base[index.s7] (a gather). */
+#define PMS_GATHER8(base, index)                                                    \
+  ((float8)((base)[(index).s0], (base)[(index).s1], (base)[(index).s2], (base)[(index).s3], \
+            (base)[(index).s4], (base)[(index).s5], (base)[(index).s6], (base)[(index).s7]))
+
+/* Per-lane state of a lane kernel: its pixel (x clamped into the row for lanes past
+ * the right edge, which are inactive: they compute but never write). */
+typedef struct {
+  int x[PMS_LANES];
+  int active[PMS_LANES];
+  int first;  /* unclamped x of lane 0; lane l's is first + stride * l */
+  int stride; /* 2 for checkerboard lanes, 1 for dense ones */
+} PmsLanes;
+
+/* Lanes of a checkerboard item: the global size is (ceil(ceil(width / 2) / PMS_LANES),
+ * height); item (i, y) handles x = 2 (PMS_LANES i + lane) + (y + colour) % 2.
+ * Returns 0 when no lane has a pixel. */
+inline int pms_checker_lanes(int width, int height, int colour, PmsLanes* lanes, int* y) {
+  *y = (int)get_global_id(1);
+  if (*y >= height) return 0;
+  int first = 2 * PMS_LANES * (int)get_global_id(0) + ((*y + colour) & 1);
+  if (first >= width) return 0;
+  lanes->first = first;
+  lanes->stride = 2;
+  for (int l = 0; l < PMS_LANES; ++l) {
+    int x = first + 2 * l;
+    lanes->active[l] = x < width;
+    lanes->x[l] = x < width ? x : width - 1;
+  }
+  return 1;
+}
+
+/* Lanes of a dense item: global size (ceil(width / PMS_LANES), height). */
+inline int pms_dense_lanes(int width, int height, PmsLanes* lanes, int* y) {
+  *y = (int)get_global_id(1);
+  if (*y >= height) return 0;
+  int first = PMS_LANES * (int)get_global_id(0);
+  if (first >= width) return 0;
+  lanes->first = first;
+  lanes->stride = 1;
+  for (int l = 0; l < PMS_LANES; ++l) {
+    int x = first + l;
+    lanes->active[l] = x < width;
+    lanes->x[l] = x < width ? x : width - 1;
+  }
+  return 1;
+}
+
+/* pms_plane_cost of plane (a[l], b[l], c[l]) at (x[l], py) for every lane, within the
+ * early-exit rule above. Lanes with bound[l] <= 0 are ignored (pass 0 for unused). */
+inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes, int py,
+                                 const float* a_in, const float* b_in, const float* c_in,
+                                 const float* bound_in) {
+  const int width = in->width;
+  const int height = in->height;
+  const int radius = in->params.radius;
+  const int step = in->params.step;
+  const float direction = in->direction;
+  const float one_minus_alpha = in->params.one_minus_alpha;
+  const float alpha = in->params.alpha;
+  const float tau_color = in->params.tau_color;
+  const float tau_gradient = in->params.tau_gradient;
+  const __global float* restrict weights = in->weights;
+  const pms_floatv a = PMS_VLOAD(0, a_in);
+  const pms_floatv b = PMS_VLOAD(0, b_in);
+  const pms_floatv c = PMS_VLOAD(0, c_in);
+  const pms_floatv bound = PMS_VLOAD(0, bound_in);
+  const int* x = lanes->x;
+  const pms_intv px = PMS_VLOAD(0, x);
+  /* Checkerboard lanes read their window samples with vector loads (fast path below)
+   * where every lane's sample lies inside the row. */
+#if PMS_LANES == 8
+  const int strided = lanes->stride == 2;
+#else
+  const int strided = 0;
+#endif
+
+  float centre_r[PMS_LANES], centre_g[PMS_LANES], centre_b[PMS_LANES];
+  for (int l = 0; l < PMS_LANES; ++l) {
+    const __global float* centre = in->ref_color + 4 * (py * width + x[l]);
+    centre_r[l] = centre[0];
+    centre_g[l] = centre[1];
+    centre_b[l] = centre[2];
+  }
+  const pms_floatv cr = PMS_VLOAD(0, centre_r);
+  const pms_floatv cg = PMS_VLOAD(0, centre_g);
+  const pms_floatv cb = PMS_VLOAD(0, centre_b);
+
+  const int y_begin = pms_first_offset(radius, step, -py);
+  const int y_end = radius < height - 1 - py ? radius : height - 1 - py;
+  /* The whole window's column grid; each lane keeps the columns inside the image,
+   * which are exactly pms_first_offset(.., -x) .. min(radius, width - 1 - x). */
+  const int x_begin = pms_first_offset(radius, step, -radius);
+  const float max_x = (float)(width - 1);
+  pms_floatv sum = (pms_floatv)(0.0f);
+  for (int dy = y_begin; dy <= y_end; dy += step) {
+    const int qy = py + dy;
+    const pms_floatv row_term = b * (float)qy;
+    const __global float* ref_row = in->ref_color + 4 * qy * width;
+    const __global float* ref_grad_row = in->ref_grad + 2 * qy * width;
+    const __global float* other_row = in->other_color + 4 * qy * width;
+    const __global float* other_grad_row = in->other_grad + 2 * qy * width;
+    for (int dx = x_begin; dx <= radius; dx += step) {
+      const pms_intv qx = px + dx;
+      const pms_intv inside = (qx >= 0) & (qx < width);
+      if (!any(inside)) continue;
+      const int first_qx = lanes->first + dx;
+      const int fast = strided && first_qx >= 0 && first_qx + 2 * (PMS_LANES - 1) <= width - 1;
+      const pms_floatv fqx = PMS_TO_FLOATV(qx);
+      const pms_floatv d = a * fqx + row_term + c;
+      const pms_floatv match_x = fmin(fmax(fqx + direction * d, 0.0f), max_x);
+      const pms_floatv x0f = floor(match_x);
+      const pms_intv x0 = PMS_TO_INTV(x0f);
+      const pms_floatv t = match_x - x0f;
+      float q0[PMS_LANES], q1[PMS_LANES], q2[PMS_LANES], gq0[PMS_LANES], gq1[PMS_LANES];
+      float m00[PMS_LANES], m01[PMS_LANES], m02[PMS_LANES];
+      float m10[PMS_LANES], m11[PMS_LANES], m12[PMS_LANES];
+      float g00[PMS_LANES], g01[PMS_LANES], g10[PMS_LANES], g11[PMS_LANES];
+      float w[PMS_LANES];
+      pms_floatv Q0, Q1, Q2, G0, G1, W;
+      pms_floatv M00, M01, M02, M10, M11, M12, G00, G01, G10, G11;
+#if PMS_LANES == 8
+      if (fast) {
+        /* Lane l's sample is pixel first_qx + 2 l: every other pixel of 15. The loads
+         * stop at the last lane's pixel (never past the row). */
+        const __global float* qc = ref_row + 4 * first_qx;
+        const float16 c0 = vload16(0, qc), c1 = vload16(1, qc), c2 = vload16(2, qc);
+        const float8 c3 = vload8(6, qc);
+        const float4 c4 = vload4(14, qc);
+        Q0 = (float8)(c0.s0, c0.s8, c1.s0, c1.s8, c2.s0, c2.s8, c3.s0, c4.s0);
+        Q1 = (float8)(c0.s1, c0.s9, c1.s1, c1.s9, c2.s1, c2.s9, c3.s1, c4.s1);
+        Q2 = (float8)(c0.s2, c0.sa, c1.s2, c1.sa, c2.s2, c2.sa, c3.s2, c4.s2);
+        const __global float* qg = ref_grad_row + 2 * first_qx;
+        const float16 h0 = vload16(0, qg);
+        const float8 h1 = vload8(2, qg);
+        const float4 h2 = vload4(6, qg);
+        const float2 h3 = vload2(14, qg);
+        G0 = (float8)(h0.s0, h0.s4, h0.s8, h0.sc, h1.s0, h1.s4, h2.s0, h3.s0);
+        G1 = (float8)(h0.s1, h0.s5, h0.s9, h0.sd, h1.s1, h1.s5, h2.s1, h3.s1);
+        /* pms_color_l1(centre, q), lane by lane */
+        const int8 wi = convert_int8(fabs(cr - Q0) + fabs(cg - Q1) + fabs(cb - Q2));
+        W = PMS_GATHER8(weights, wi);
+        /* The other view at x0 and x1 = min(x0 + 1, width - 1), lane by lane. */
+        const int8 i0 = x0;
+        const int8 i1 = select(i0, i0 + 1, i0 + 1 < width);
+        const int8 c0i = 4 * i0, c1i = 4 * i1, g0i = 2 * i0, g1i = 2 * i1;
+        M00 = PMS_GATHER8(other_row, c0i);
+        M01 = PMS_GATHER8(other_row + 1, c0i);
+        M02 = PMS_GATHER8(other_row + 2, c0i);
+        M10 = PMS_GATHER8(other_row, c1i);
+        M11 = PMS_GATHER8(other_row + 1, c1i);
+        M12 = PMS_GATHER8(other_row + 2, c1i);
+        G00 = PMS_GATHER8(other_grad_row, g0i);
+        G01 = PMS_GATHER8(other_grad_row + 1, g0i);
+        G10 = PMS_GATHER8(other_grad_row, g1i);
+        G11 = PMS_GATHER8(other_grad_row + 1, g1i);
+      } else
+#endif
+      {
+#pragma unroll
+      for (int l = 0; l < PMS_LANES; ++l) {
+        int sx = x[l] + dx;
+        sx = sx < 0 ? 0 : (sx > width - 1 ? width - 1 : sx); /* outside lanes: any pixel */
+        const int i0 = x0[l];
+        const int i1 = i0 + 1 < width ? i0 + 1 : i0;
+        const __global float* q = ref_row + 4 * sx;
+        const __global float* g = ref_grad_row + 2 * sx;
+        const __global float* m0 = other_row + 4 * i0;
+        const __global float* m1 = other_row + 4 * i1;
+        const __global float* h0 = other_grad_row + 2 * i0;
+        const __global float* h1 = other_grad_row + 2 * i1;
+        q0[l] = q[0];
+        q1[l] = q[1];
+        q2[l] = q[2];
+        gq0[l] = g[0];
+        gq1[l] = g[1];
+        m00[l] = m0[0];
+        m01[l] = m0[1];
+        m02[l] = m0[2];
+        m10[l] = m1[0];
+        m11[l] = m1[1];
+        m12[l] = m1[2];
+        g00[l] = h0[0];
+        g01[l] = h0[1];
+        g10[l] = h1[0];
+        g11[l] = h1[1];
+        /* pms_color_l1(centre, q) */
+        w[l] = weights[(int)(fabs(centre_r[l] - q[0]) + fabs(centre_g[l] - q[1]) +
+                             fabs(centre_b[l] - q[2]))];
+      }
+      Q0 = PMS_VLOAD(0, q0);
+      Q1 = PMS_VLOAD(0, q1);
+      Q2 = PMS_VLOAD(0, q2);
+      G0 = PMS_VLOAD(0, gq0);
+      G1 = PMS_VLOAD(0, gq1);
+      W = PMS_VLOAD(0, w);
+      M00 = PMS_VLOAD(0, m00);
+      M01 = PMS_VLOAD(0, m01);
+      M02 = PMS_VLOAD(0, m02);
+      M10 = PMS_VLOAD(0, m10);
+      M11 = PMS_VLOAD(0, m11);
+      M12 = PMS_VLOAD(0, m12);
+      G00 = PMS_VLOAD(0, g00);
+      G01 = PMS_VLOAD(0, g01);
+      G10 = PMS_VLOAD(0, g10);
+      G11 = PMS_VLOAD(0, g11);
+      }
+      const pms_floatv color_diff = fabs(Q0 - (M00 + t * (M10 - M00))) +
+                                    fabs(Q1 - (M01 + t * (M11 - M01))) +
+                                    fabs(Q2 - (M02 + t * (M12 - M02)));
+      const pms_floatv grad_diff =
+          fabs(G0 - (G00 + t * (G10 - G00))) + fabs(G1 - (G01 + t * (G11 - G01)));
+      const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
+                                       alpha * fmin(grad_diff, tau_gradient);
+      sum = select(sum, sum + W * dissimilarity, inside);
+    }
+    if (all(sum >= bound)) return sum;
+  }
+  return sum;
+}
+
 #endif /* FLEXSIGHT_PMS_KERNEL_SUPPORT_H */

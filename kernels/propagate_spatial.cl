@@ -1,26 +1,50 @@
 /* Pixels of one checkerboard colour try the planes of their PMS_SPATIAL_CANDIDATES
  * neighbours, which all have the other colour and so are not written by this launch
- * (reference: propagate_spatial). */
+ * (reference: propagate_spatial). Each work item handles PMS_LANES pixels of a row
+ * (pms_checker_lanes) and evaluates their candidates together (pms_cost_lanes). */
 #include "pms_kernel_support.h"
 
 __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, __global float* planes,
                                 __global float* cost) {
-  int x, y;
-  if (!pms_checker_pixel(width, height, colour, &x, &y)) return;
+  PmsLanes lanes;
+  int y;
+  if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
-  int index = y * width + x;
-  PmsBestPlane best = pms_best_load(planes, cost, index);
+  PmsBestPlane best[PMS_LANES];
+  for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
   for (int candidate = 0; candidate < PMS_SPATIAL_CANDIDATES; ++candidate) {
     int dx = 0;
     int dy = 0;
     pms_spatial_offset(candidate, &dx, &dy);
-    int nx = x + dx;
     int ny = y + dy;
-    if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-    float neighbour[3];
-    pms_load_plane(planes, ny * width + nx, neighbour);
-    if (pms_best_same_as(&best, neighbour)) continue; /* its cost here is the one we hold */
-    pms_best_offer(&best, neighbour, pms_cost_at(&in, x, y, neighbour, best.cost));
+    if (ny < 0 || ny >= height) continue;
+    float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
+    int tries[PMS_LANES];
+    int any_try = 0;
+    for (int l = 0; l < PMS_LANES; ++l) {
+      int nx = lanes.x[l] + dx;
+      float neighbour[3] = {0.0f, 0.0f, 0.0f};
+      int ok = lanes.active[l] && nx >= 0 && nx < width;
+      if (ok) {
+        pms_load_plane(planes, ny * width + nx, neighbour);
+        ok = !pms_best_same_as(&best[l], neighbour); /* its cost here is the one we hold */
+      }
+      tries[l] = ok;
+      any_try |= ok;
+      ca[l] = neighbour[0];
+      cb[l] = neighbour[1];
+      cc[l] = neighbour[2];
+      bound[l] = ok ? best[l].cost : 0.0f;
+    }
+    if (!any_try) continue;
+    pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
+    for (int l = 0; l < PMS_LANES; ++l) {
+      if (!tries[l]) continue;
+      float neighbour[3] = {ca[l], cb[l], cc[l]};
+      pms_best_offer(&best[l], neighbour, costs[l]);
+    }
   }
-  pms_best_store(&best, planes, cost, index);
+  for (int l = 0; l < PMS_LANES; ++l) {
+    if (lanes.active[l]) pms_best_store(&best[l], planes, cost, y * width + lanes.x[l]);
+  }
 }

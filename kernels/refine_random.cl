@@ -1,6 +1,7 @@
 /* Pixels of one checkerboard colour try random perturbations of their plane with
  * halving ranges (reference: refine_random). `confidence` may be NULL (coarsest level):
- * then no pixel counts as confident. */
+ * then no pixel counts as confident. Each work item handles PMS_LANES pixels of a row
+ * (pms_checker_lanes) and evaluates their trials together (pms_cost_lanes). */
 #include "pms_kernel_support.h"
 
 __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint iteration,
@@ -8,29 +9,55 @@ __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint it
                             float min_range, float confident_threshold,
                             float confident_max_range, const __global float* confidence,
                             __global float* planes, __global float* cost) {
-  int x, y;
-  if (!pms_checker_pixel(width, height, colour, &x, &y)) return;
+  PmsLanes lanes;
+  int y;
+  if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
   const int trials = pms_search_trial_count(initial_range, min_range);
-  int index = y * width + x;
-  int confident = confidence != 0 && confidence[index] >= confident_threshold;
-  PmsBestPlane best = pms_best_load(planes, cost, index);
+  PmsBestPlane best[PMS_LANES];
+  int confident[PMS_LANES];
+  for (int l = 0; l < PMS_LANES; ++l) {
+    int index = y * width + lanes.x[l];
+    confident[l] = confidence != 0 && confidence[index] >= confident_threshold;
+    best[l] = pms_best_load(planes, cost, index);
+  }
   float range = initial_range;
   float trial_normal_range = normal_range;
   for (int trial = 0; trial < trials;
        ++trial, range *= 0.5f, trial_normal_range *= 0.5f) {
-    if (confident && range > confident_max_range) continue;
-    float u[4];
-    for (int c = 0; c < 4; ++c) {
-      u[c] = pms_random_unit(seed, (uint)view, (uint)index, iteration,
-                             pms_search_trial_key(trial, c));
+    float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
+    int tries[PMS_LANES];
+    int any_try = 0;
+    for (int l = 0; l < PMS_LANES; ++l) {
+      const int x = lanes.x[l];
+      float candidate[3] = {0.0f, 0.0f, 0.0f};
+      int ok = lanes.active[l] && !(confident[l] && range > confident_max_range);
+      if (ok) {
+        uint index = (uint)(y * width + x);
+        float u[4];
+        for (int c = 0; c < 4; ++c) {
+          u[c] = pms_random_unit(seed, (uint)view, index, iteration,
+                                 pms_search_trial_key(trial, c));
+        }
+        ok = pms_perturb_plane(best[l].abc, x, y, max_disparity, range, trial_normal_range,
+                               u[0], u[1], u[2], u[3], candidate);
+      }
+      tries[l] = ok;
+      any_try |= ok;
+      ca[l] = candidate[0];
+      cb[l] = candidate[1];
+      cc[l] = candidate[2];
+      bound[l] = ok ? best[l].cost : 0.0f;
     }
-    float candidate[3];
-    if (!pms_perturb_plane(best.abc, x, y, max_disparity, range, trial_normal_range, u[0],
-                           u[1], u[2], u[3], candidate)) {
-      continue;
+    if (!any_try) continue;
+    pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
+    for (int l = 0; l < PMS_LANES; ++l) {
+      if (!tries[l]) continue;
+      float candidate[3] = {ca[l], cb[l], cc[l]};
+      pms_best_offer(&best[l], candidate, costs[l]);
     }
-    pms_best_offer(&best, candidate, pms_cost_at(&in, x, y, candidate, best.cost));
   }
-  pms_best_store(&best, planes, cost, index);
+  for (int l = 0; l < PMS_LANES; ++l) {
+    if (lanes.active[l]) pms_best_store(&best[l], planes, cost, y * width + lanes.x[l]);
+  }
 }

@@ -22,5 +22,11 @@ for reference in "$out"/ppms-reference/*_disp.pfm; do
   cmp "$reference" "$out/ppms-opencl/$(basename "$reference")"
 done
 echo "OpenCL and reference disparities are identical for every scene"
-# The PFMs were needed for the comparison; the pictures and reports are what people read.
-rm -f "$out"/*/*.pfm
+# Pictures: the PMS subset side by side with PPMS, and three scenes where PPMS fails most.
+scripts/make_montage.py "$data" "$out/montage.jpg" "$pms_scenes" \
+  PPMS="$out/ppms-reference" PMS="$out/pms-reference"
+scripts/make_montage.py "$data" "$out/montage-hard.jpg" Adirondack,PianoL,Shelves \
+  PPMS="$out/ppms-reference"
+# The per-scene files were needed for the comparison and the montages; the reports and
+# montages are what is kept (the per-scene pictures would add 20 MB to the repository).
+rm -f "$out"/*/*.pfm "$out"/*/*.png

@@ -7,6 +7,14 @@ namespace {
 
 namespace src = kernel_sources;
 
+// Pixels per work item of the cost kernels (PMS_LANES of pms_kernel_support.h): they
+// evaluate that many pixels' costs together in OpenCL vector types, which a CPU driver
+// compiles to SIMD code where it could not vectorise across work items.
+constexpr int kCostLanes = 8;
+const std::string kLanesOption = "-DPMS_LANES=" + std::to_string(kCostLanes);
+
+size_t lane_items(size_t pixels) { return (pixels + kCostLanes - 1) / kCostLanes; }
+
 // A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
 template <typename T>
 void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
@@ -45,11 +53,11 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler)
     : context_(context), profiler_(profiler),
       downsample_color_(make_kernel(src::build_view, "downsample_color")),
       compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
-      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes")),
-      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs")),
-      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial")),
-      propagate_view_(make_kernel(src::propagate_view, "propagate_view")),
-      refine_random_(make_kernel(src::refine_random, "refine_random")),
+      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes", kLanesOption)),
+      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs", kLanesOption)),
+      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial", kLanesOption)),
+      propagate_view_(make_kernel(src::propagate_view, "propagate_view", kLanesOption)),
+      refine_random_(make_kernel(src::refine_random, "refine_random", kLanesOption)),
       carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
       plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
       lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),
@@ -76,9 +84,14 @@ void OpenClStages::launch(Kernel& kernel, size_t width, size_t height) {
   if (profiler_) profiler_->record(kernel.name(), std::move(event));
 }
 
-// One work item per pixel of the colour: half a row, rounded up.
+// One work item per kCostLanes pixels of the colour: half a row, rounded up.
 void OpenClStages::launch_checkerboard(Kernel& kernel, int width, int height) {
-  launch(kernel, (static_cast<size_t>(width) + 1) / 2, height);
+  launch(kernel, lane_items((static_cast<size_t>(width) + 1) / 2), height);
+}
+
+// One work item per kCostLanes consecutive pixels of a row.
+void OpenClStages::launch_dense_lanes(Kernel& kernel, int width, int height) {
+  launch(kernel, lane_items(static_cast<size_t>(width)), height);
 }
 
 void OpenClStages::downsample_color(const DeviceView& fine, DeviceView& coarse) {
@@ -100,13 +113,13 @@ void OpenClStages::init_random_planes(const DeviceLevel& in, int view, std::uint
   require_level(in, field, "init_random_planes");
   set_cost_args(init_random_planes_, in, view, in.seed, iteration, in.max_disparity(),
                 field.planes, field.cost);
-  launch(init_random_planes_, field.width, field.height);
+  launch_dense_lanes(init_random_planes_, field.width, field.height);
 }
 
 void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& field) {
   require_level(in, field, "evaluate_costs");
   set_cost_args(evaluate_costs_, in, view, field.planes, field.cost);
-  launch(evaluate_costs_, field.width, field.height);
+  launch_dense_lanes(evaluate_costs_, field.width, field.height);
 }
 
 void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,

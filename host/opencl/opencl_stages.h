@@ -60,6 +60,7 @@ class OpenClStages {
   void set_cost_args(Kernel& kernel, const DeviceLevel& in, int view, const Rest&... rest);
   void launch(Kernel& kernel, size_t width, size_t height);
   void launch_checkerboard(Kernel& kernel, int width, int height);
+  void launch_dense_lanes(Kernel& kernel, int width, int height);
 
   Context& context_;
   KernelProfiler* profiler_;
