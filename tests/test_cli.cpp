@@ -50,6 +50,10 @@ class Cli : public ::testing::Test {
     cv::imwrite(right_, flexsight::testing_support::random_rgb8(64, 48, 2));
     output_ = (dir_ / "disp.pfm").string();
   }
+  // A failed test keeps its folder for inspection; a passing one leaves nothing behind.
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
   // Runs a command that must fail; checks exit code, message and that no output exists.
   void expect_rejected(const std::string& arguments, const std::string& must_mention) {
     RunResult r = run_flexsight(arguments, dir_);
