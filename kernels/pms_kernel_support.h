@@ -373,4 +373,47 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
   return sum;
 }
 
+
+/* One candidate plane per lane for a batched evaluation: the kernels fill it lane by
+ * lane with the reference's per-pixel rules, then pms_batch_offer costs every trying
+ * lane at once and offers the result to that lane's best plane. */
+typedef struct {
+  float a[PMS_LANES];
+  float b[PMS_LANES];
+  float c[PMS_LANES];
+  float bound[PMS_LANES];
+  int tries[PMS_LANES];
+  int any;
+} PmsCandidateBatch;
+
+/* Lane `lane` tries `abc` when `tries`, bounded by its current best cost. */
+inline void pms_batch_set(PmsCandidateBatch* batch, int lane, int tries, const float* abc,
+                          const PmsBestPlane* best) {
+  batch->tries[lane] = tries;
+  batch->any |= tries;
+  batch->a[lane] = abc[0];
+  batch->b[lane] = abc[1];
+  batch->c[lane] = abc[2];
+  batch->bound[lane] = tries ? best->cost : 0.0f;
+}
+
+inline void pms_batch_offer(PmsCandidateBatch* batch, const PmsCostInputs* in,
+                            const PmsLanes* lanes, int y, PmsBestPlane* best) {
+  if (!batch->any) return;
+  pms_floatv costs = pms_cost_lanes(in, lanes, y, batch->a, batch->b, batch->c, batch->bound);
+  for (int l = 0; l < PMS_LANES; ++l) {
+    if (!batch->tries[l]) continue;
+    float candidate[3] = {batch->a[l], batch->b[l], batch->c[l]};
+    pms_best_offer(&best[l], candidate, costs[l]);
+  }
+}
+
+/* Writes back every active lane's plane (a no-op for lanes whose plane did not change). */
+inline void pms_best_store_lanes(const PmsBestPlane* best, const PmsLanes* lanes, int y,
+                                 int width, __global float* planes, __global float* cost) {
+  for (int l = 0; l < PMS_LANES; ++l) {
+    if (lanes->active[l]) pms_best_store(&best[l], planes, cost, y * width + lanes->x[l]);
+  }
+}
+
 #endif /* FLEXSIGHT_PMS_KERNEL_SUPPORT_H */

@@ -18,9 +18,8 @@ __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, __global float
     pms_spatial_offset(candidate, &dx, &dy);
     int ny = y + dy;
     if (ny < 0 || ny >= height) continue;
-    float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
-    int tries[PMS_LANES];
-    int any_try = 0;
+    PmsCandidateBatch batch;
+    batch.any = 0;
     for (int l = 0; l < PMS_LANES; ++l) {
       int nx = lanes.x[l] + dx;
       float neighbour[3] = {0.0f, 0.0f, 0.0f};
@@ -29,22 +28,9 @@ __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, __global float
         pms_load_plane(planes, ny * width + nx, neighbour);
         ok = !pms_best_same_as(&best[l], neighbour); /* its cost here is the one we hold */
       }
-      tries[l] = ok;
-      any_try |= ok;
-      ca[l] = neighbour[0];
-      cb[l] = neighbour[1];
-      cc[l] = neighbour[2];
-      bound[l] = ok ? best[l].cost : 0.0f;
+      pms_batch_set(&batch, l, ok, neighbour, &best[l]);
     }
-    if (!any_try) continue;
-    pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
-    for (int l = 0; l < PMS_LANES; ++l) {
-      if (!tries[l]) continue;
-      float neighbour[3] = {ca[l], cb[l], cc[l]};
-      pms_best_offer(&best[l], neighbour, costs[l]);
-    }
+    pms_batch_offer(&batch, &in, &lanes, y, best);
   }
-  for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes.active[l]) pms_best_store(&best[l], planes, cost, y * width + lanes.x[l]);
-  }
+  pms_best_store_lanes(best, &lanes, y, width, planes, cost);
 }

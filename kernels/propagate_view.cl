@@ -11,9 +11,8 @@ __kernel void propagate_view(PMS_COST_KERNEL_ARGS, int colour,
   if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
   PmsBestPlane best[PMS_LANES];
-  float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
-  int tries[PMS_LANES];
-  int any_try = 0;
+  PmsCandidateBatch batch;
+  batch.any = 0;
   for (int l = 0; l < PMS_LANES; ++l) {
     const int x = lanes.x[l];
     best[l] = pms_best_load(planes, cost, y * width + x);
@@ -31,19 +30,8 @@ __kernel void propagate_view(PMS_COST_KERNEL_ARGS, int colour,
              !pms_best_same_as(&best[l], candidate);
       }
     }
-    tries[l] = ok;
-    any_try |= ok;
-    ca[l] = candidate[0];
-    cb[l] = candidate[1];
-    cc[l] = candidate[2];
-    bound[l] = ok ? best[l].cost : 0.0f;
+    pms_batch_set(&batch, l, ok, candidate, &best[l]);
   }
-  if (!any_try) return;
-  pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
-  for (int l = 0; l < PMS_LANES; ++l) {
-    if (!tries[l]) continue;
-    float candidate[3] = {ca[l], cb[l], cc[l]};
-    pms_best_offer(&best[l], candidate, costs[l]);
-    pms_best_store(&best[l], planes, cost, y * width + lanes.x[l]);
-  }
+  pms_batch_offer(&batch, &in, &lanes, y, best);
+  pms_best_store_lanes(best, &lanes, y, width, planes, cost);
 }

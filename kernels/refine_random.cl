@@ -25,9 +25,8 @@ __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint it
   float trial_normal_range = normal_range;
   for (int trial = 0; trial < trials;
        ++trial, range *= 0.5f, trial_normal_range *= 0.5f) {
-    float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
-    int tries[PMS_LANES];
-    int any_try = 0;
+    PmsCandidateBatch batch;
+    batch.any = 0;
     for (int l = 0; l < PMS_LANES; ++l) {
       const int x = lanes.x[l];
       float candidate[3] = {0.0f, 0.0f, 0.0f};
@@ -42,22 +41,9 @@ __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint it
         ok = pms_perturb_plane(best[l].abc, x, y, max_disparity, range, trial_normal_range,
                                u[0], u[1], u[2], u[3], candidate);
       }
-      tries[l] = ok;
-      any_try |= ok;
-      ca[l] = candidate[0];
-      cb[l] = candidate[1];
-      cc[l] = candidate[2];
-      bound[l] = ok ? best[l].cost : 0.0f;
+      pms_batch_set(&batch, l, ok, candidate, &best[l]);
     }
-    if (!any_try) continue;
-    pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
-    for (int l = 0; l < PMS_LANES; ++l) {
-      if (!tries[l]) continue;
-      float candidate[3] = {ca[l], cb[l], cc[l]};
-      pms_best_offer(&best[l], candidate, costs[l]);
-    }
+    pms_batch_offer(&batch, &in, &lanes, y, best);
   }
-  for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes.active[l]) pms_best_store(&best[l], planes, cost, y * width + lanes.x[l]);
-  }
+  pms_best_store_lanes(best, &lanes, y, width, planes, cost);
 }

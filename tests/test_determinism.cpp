@@ -10,18 +10,6 @@ using testing_support::same_bytes;
 
 namespace {
 
-struct Crop {
-  cv::Mat left, right;
-};
-
-// A 131x93 crop of the real fixture: odd sizes, real texture, quick to match.
-Crop fixture_crop() {
-  StereoPair pair = load_stereo_pair(testing_support::fixture_dir() + "/im0.png",
-                                     testing_support::fixture_dir() + "/im1.png");
-  cv::Rect roi(40, 50, 131, 93);
-  return {pair.left(roi).clone(), pair.right(roi).clone()};
-}
-
 StereoParams quick_params(StereoMethod method, int threads) {
   StereoParams p;
   p.method = method;
@@ -44,7 +32,7 @@ class ThreadCountInvariance : public ::testing::TestWithParam<StereoMethod> {};
 }  // namespace
 
 TEST_P(ThreadCountInvariance, OneTwoAndThreeThreadsGiveTheSameBytes) {
-  Crop crop = fixture_crop();
+  testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoResult one = run_stereo(crop.left, crop.right, quick_params(GetParam(), 1));
   StereoResult two = run_stereo(crop.left, crop.right, quick_params(GetParam(), 2));
   StereoResult three = run_stereo(crop.left, crop.right, quick_params(GetParam(), 3));
@@ -57,7 +45,7 @@ INSTANTIATE_TEST_SUITE_P(Methods, ThreadCountInvariance,
                          [](const auto& info) { return std::string(method_name(info.param)); });
 
 TEST(Determinism, TheSeedDecidesTheRandomPlanes) {
-  Crop crop = fixture_crop();
+  testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoParams p = quick_params(StereoMethod::PPMS, 2);
   StereoResult first = run_stereo(crop.left, crop.right, p);
   StereoResult again = run_stereo(crop.left, crop.right, p);

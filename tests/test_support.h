@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fallback/stereo_params.h"
+#include "host/io/image_io.h"
 
 namespace flexsight {
 // Readable test parameter names in ctest output instead of raw bytes.
@@ -69,6 +70,17 @@ inline cv::Mat random_rgb8(int width, int height, unsigned seed) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) image.at<cv::Vec3b>(y, x) = texture.sample(x, y);
   return image;
+}
+
+// A 131x93 crop of the real fixture: odd sizes, real texture, quick to match.
+struct FixtureCrop {
+  cv::Mat left, right;
+};
+
+inline FixtureCrop fixture_crop() {
+  StereoPair pair = load_stereo_pair(fixture_dir() + "/im0.png", fixture_dir() + "/im1.png");
+  cv::Rect roi(40, 50, 131, 93);
+  return {pair.left(roi).clone(), pair.right(roi).clone()};
 }
 
 inline bool same_bytes(const cv::Mat& a, const cv::Mat& b) {

@@ -22,18 +22,6 @@ struct PipelineCase {
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
 
-// The 131x93 crop of test_determinism.cpp: odd sizes, real texture, quick to match.
-struct Crop {
-  cv::Mat left, right;
-};
-
-Crop fixture_crop() {
-  StereoPair pair = load_stereo_pair(testing_support::fixture_dir() + "/im0.png",
-                                     testing_support::fixture_dir() + "/im1.png");
-  cv::Rect roi(40, 50, 131, 93);
-  return {pair.left(roi).clone(), pair.right(roi).clone()};
-}
-
 OpenClMatcher& matcher() {
   static OpenClMatcher shared([] {
     OpenClOptions options;
@@ -53,7 +41,7 @@ class Pipeline : public ::testing::TestWithParam<PipelineCase> {};
 
 TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   const PipelineCase c = GetParam();
-  const Crop crop = fixture_crop();
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoParams params;
   params.method = c.method;
   params.ndisp = c.ndisp;
@@ -89,7 +77,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
 }
 
 TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
-  const Crop crop = fixture_crop();
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoParams params;
   params.ndisp = 500;
   EXPECT_THROW(matcher().run(crop.left, crop.right, params), InputError);
