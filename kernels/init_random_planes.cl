@@ -11,7 +11,8 @@ __kernel void init_random_planes(PMS_COST_KERNEL_ARGS, uint seed, uint iteration
   int y;
   if (!pms_dense_lanes(width, height, &lanes, &y)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
-  float ca[PMS_LANES], cb[PMS_LANES], cc[PMS_LANES], bound[PMS_LANES];
+  PmsCandidateBatch batch;
+  batch.any = 0;
   for (int l = 0; l < PMS_LANES; ++l) {
     const int x = lanes.x[l];
     const int index = y * width + x;
@@ -23,13 +24,7 @@ __kernel void init_random_planes(PMS_COST_KERNEL_ARGS, uint seed, uint iteration
       planes[4 * index + 2] = abc[2];
       planes[4 * index + 3] = 0.0f;
     }
-    ca[l] = abc[0];
-    cb[l] = abc[1];
-    cc[l] = abc[2];
-    bound[l] = lanes.active[l] ? PMS_NO_BOUND : 0.0f;
+    pms_batch_set_unbounded(&batch, l, lanes.active[l], abc);
   }
-  pms_floatv costs = pms_cost_lanes(&in, &lanes, y, ca, cb, cc, bound);
-  for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes.active[l]) cost[y * width + lanes.x[l]] = costs[l];
-  }
+  pms_batch_store_costs(&batch, &in, &lanes, y, width, cost);
 }

@@ -416,4 +416,27 @@ inline void pms_best_store_lanes(const PmsBestPlane* best, const PmsLanes* lanes
   }
 }
 
+
+/* Lane `lane` gets the full, unbounded cost of `abc` (bound 0 for an inactive lane, whose
+ * result is never stored). */
+inline void pms_batch_set_unbounded(PmsCandidateBatch* batch, int lane, int active,
+                                    const float* abc) {
+  batch->tries[lane] = active;
+  batch->any |= active;
+  batch->a[lane] = abc[0];
+  batch->b[lane] = abc[1];
+  batch->c[lane] = abc[2];
+  batch->bound[lane] = active ? PMS_NO_BOUND : 0.0f;
+}
+
+/* Costs every lane's plane at once and writes the active lanes' costs. */
+inline void pms_batch_store_costs(PmsCandidateBatch* batch, const PmsCostInputs* in,
+                                  const PmsLanes* lanes, int y, int width,
+                                  __global float* cost) {
+  pms_floatv costs = pms_cost_lanes(in, lanes, y, batch->a, batch->b, batch->c, batch->bound);
+  for (int l = 0; l < PMS_LANES; ++l) {
+    if (lanes->active[l]) cost[y * width + lanes->x[l]] = costs[l];
+  }
+}
+
 #endif /* FLEXSIGHT_PMS_KERNEL_SUPPORT_H */
