@@ -127,6 +127,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   result.raw_left = to_mat(raw_left, width, height, 1);
   result.raw_right = to_mat(raw_right, width, height, 1);
   result.planes_left = planes_to_mat(filled.planes, width, height);
+  result.cost_left = to_mat(fields[PMS_VIEW_LEFT].cost, width, height, 1);
   return result;
 }
 

@@ -19,6 +19,7 @@ struct StereoResult {
   cv::Mat raw_left;         // CV_32FC1, left view before post-processing
   cv::Mat raw_right;        // CV_32FC1, right view before post-processing
   cv::Mat planes_left;      // CV_32FC3 (a, b, c) per pixel after post-processing
+  cv::Mat cost_left;        // CV_32FC1, matching cost of each raw left plane (finest level)
   std::vector<StageTiming> timings;
   double total_seconds() const;
 };

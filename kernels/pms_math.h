@@ -284,6 +284,29 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
   return sum;
 }
 
+/*
+ * Sum of the support weights over the window samples of pms_plane_cost at (px, py):
+ * dividing a cost by it gives the weighted mean dissimilarity, comparable between
+ * textured and uniform regions (the confidence map uses it).
+ */
+PMS_INLINE float pms_support_weight_sum(const PMS_GLOBAL float* ref_color,
+                                        const PMS_GLOBAL float* weights, int width, int height,
+                                        PmsCostParams params, int px, int py) {
+  const PMS_GLOBAL float* centre = ref_color + 4 * (py * width + px);
+  int y_begin = pms_first_offset(params.radius, params.step, -py);
+  int y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
+  int x_begin = pms_first_offset(params.radius, params.step, -px);
+  int x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
+  float sum = 0.0f;
+  for (int dy = y_begin; dy <= y_end; dy += params.step) {
+    const PMS_GLOBAL float* ref_row = ref_color + 4 * (py + dy) * width;
+    for (int dx = x_begin; dx <= x_end; dx += params.step) {
+      sum = sum + weights[pms_color_l1(centre, ref_row + 4 * (px + dx))];
+    }
+  }
+  return sum;
+}
+
 /* ------------------------------------------------------------- image preparation */
 
 /* 2x2 box average with rounding, integer-exact; odd sizes repeat the last row/column.

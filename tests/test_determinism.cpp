@@ -24,6 +24,7 @@ void expect_same_result(const StereoResult& a, const StereoResult& b) {
   EXPECT_TRUE(same_bytes(a.raw_left, b.raw_left));
   EXPECT_TRUE(same_bytes(a.raw_right, b.raw_right));
   EXPECT_TRUE(same_bytes(a.planes_left, b.planes_left));
+  EXPECT_TRUE(same_bytes(a.cost_left, b.cost_left));
   EXPECT_TRUE(same_bytes(a.disparity, b.disparity));
 }
 

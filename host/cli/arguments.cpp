@@ -115,6 +115,14 @@ void consume_stereo_params(std::vector<std::string>& args, StereoParams& params)
   args = rest;
 }
 
+double take_number_option(std::vector<std::string>& args, const std::string& name,
+                          double fallback) {
+  const std::string text = take_option(args, name);
+  if (text.empty()) return fallback;
+  // Options arrive here with their dashes; messages use the bare name like the others.
+  return parse_float(name.substr(name.find_first_not_of('-')), text);
+}
+
 std::string take_option(std::vector<std::string>& args, const std::string& name) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] != name) continue;

@@ -16,6 +16,11 @@ void consume_stereo_params(std::vector<std::string>& args, StereoParams& params)
 // Removes "--name value" from args and returns value, or "" if absent.
 std::string take_option(std::vector<std::string>& args, const std::string& name);
 
+// Removes "--name value" from args and returns value as a number, or `fallback` if
+// absent. Throws InputError ("option --name: expected a number ...") when malformed.
+double take_number_option(std::vector<std::string>& args, const std::string& name,
+                          double fallback);
+
 // Removes "--name" from args and returns whether it was there.
 bool take_flag(std::vector<std::string>& args, const std::string& name);
 

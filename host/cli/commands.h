@@ -8,5 +8,6 @@ namespace flexsight {
 int run_stereo_command(std::vector<std::string> args);
 int run_eval_command(std::vector<std::string> args);
 int run_devices_command(std::vector<std::string> args);
+int run_cloud_command(std::vector<std::string> args);
 
 }  // namespace flexsight

@@ -15,6 +15,7 @@ void print_usage() {
                "  stereo LEFT RIGHT -o DISP.pfm [options]   match a rectified pair\n"
                "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
                "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
+               "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "stereo") return flexsight::run_stereo_command(args);
     if (command == "eval") return flexsight::run_eval_command(args);
+    if (command == "cloud") return flexsight::run_cloud_command(args);
     if (command == "devices") return flexsight::run_devices_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();

@@ -8,9 +8,11 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
+#include "host/cli/cloud_outputs.h"
 #include "host/cli/commands.h"
 #include "host/eval/colorize.h"
 #include "host/eval/metrics.h"
+#include "host/geometry/confidence_map.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
@@ -34,9 +36,14 @@ void print_help() {
                "  --raw RAW.pfm               left disparity before post-processing (PFM)\n"
                "  --gt GT.pfm                 ground truth: print bad-N and average error\n"
                "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
+               "  --planes PLANES.pfm         per-pixel planes (a, b, c) as a 3-channel PFM\n"
+               "  --conf CONF.pfm             confidence in [0, 1] (left/right agreement x match\n"
+               "                              quality, see host/geometry/confidence_map.h)\n"
+               "  --conf-png CONF.png         the confidence as a picture\n"
                "  --profile                   print the device time per OpenCL kernel\n"
                "  --quiet                     no progress lines\n"
-            << backend_options_help() << "Matcher parameters:\n"
+            << cloud_output_options_help() << backend_options_help()
+            << "Matcher parameters:\n"
             << stereo_params_help();
 }
 
@@ -45,6 +52,7 @@ struct StereoJob {
   std::string right;
   std::string gt;
   std::string gt_mask;
+  std::string calib;  // a scene folder's calib.txt
   bool ndisp_from_calib = false;
 };
 
@@ -67,6 +75,7 @@ StereoJob resolve_inputs(const std::vector<std::string>& positional, StereoParam
   }
   job.left = (scene / "im0.png").string();
   job.right = (scene / "im1.png").string();
+  if (fs::exists(scene / "calib.txt")) job.calib = (scene / "calib.txt").string();
   if (!ndisp_given) {
     params.ndisp = read_middlebury_calib((scene / "calib.txt").string()).ndisp;
     job.ndisp_from_calib = true;
@@ -134,6 +143,10 @@ int run_stereo_command(std::vector<std::string> args) {
   if (output.empty()) output = take_option(args, "--output");
   const std::string png = take_option(args, "--png");
   const std::string raw = take_option(args, "--raw");
+  const std::string planes = take_option(args, "--planes");
+  const std::string conf = take_option(args, "--conf");
+  const std::string conf_png = take_option(args, "--conf-png");
+  CloudOutputOptions cloud_options = take_cloud_output_options(args);
   std::string gt = take_option(args, "--gt");
   std::string gt_mask = take_option(args, "--gt-mask");
   BackendOptions backend_options = take_backend_options(args);
@@ -145,12 +158,14 @@ int run_stereo_command(std::vector<std::string> args) {
   StereoJob job = resolve_inputs(args, params, ndisp_given);
   if (!gt.empty()) job.gt = gt;
   if (!gt_mask.empty()) job.gt_mask = gt_mask;
+  if (cloud_options.calib.empty()) cloud_options.calib = job.calib;
   const StereoPair pair = load_stereo_pair(job.left, job.right);
   if (job.ndisp_from_calib) std::cerr << "ndisp " << params.ndisp << " from calib.txt\n";
 
   ProgressCallback progress;
   if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
   validate_inputs(pair.left, pair.right, params);  // before the kernels are built
+  check_cloud_outputs(cloud_options, pair.left.cols, pair.left.rows);
   StereoBackend backend(backend_options);
   std::cerr << method_name(params.method) << " on " << pair.left.cols << "x" << pair.left.rows
             << ", ndisp " << params.ndisp << ", " << backend.planned() << "\n";
@@ -159,6 +174,13 @@ int run_stereo_command(std::vector<std::string> args) {
 
   write_pfm(output, result.disparity);
   if (!raw.empty()) write_pfm(raw, result.raw_left);
+  if (!planes.empty()) write_pfm(planes, result.planes_left);
+  cv::Mat confidence;
+  if (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d()) {
+    confidence = confidence_map(result, pair.left, params);
+  }
+  if (!conf.empty()) write_pfm(conf, confidence);
+  if (!conf_png.empty()) write_image(conf_png, colorize_confidence(confidence));
   if (!png.empty()) {
     write_image(png, colorize_disparity(result.disparity, static_cast<float>(params.ndisp)));
   }
@@ -167,6 +189,7 @@ int run_stereo_command(std::vector<std::string> args) {
   std::printf("| total | %.3f |\n", result.total_seconds());
   if (backend_options.profile) print_kernel_timings(backend.kernel_timings());
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
+  write_cloud_outputs(cloud_options, result.disparity, pair.left, result.planes_left, confidence);
   if (!job.gt.empty()) print_scores(result.disparity, job);
   return 0;
 }

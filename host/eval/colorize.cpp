@@ -75,6 +75,24 @@ cv::Mat colorize_disparity(const cv::Mat& disparity, float max_disparity) {
   return rgb;
 }
 
+cv::Mat colorize_confidence(const cv::Mat& confidence) {
+  require_disparity(confidence, "colorize_confidence: confidence");
+  cv::Mat levels(confidence.size(), CV_8UC1);
+  cv::Mat valid(confidence.size(), CV_8UC1);
+  for (int y = 0; y < confidence.rows; ++y) {
+    const float* c = confidence.ptr<float>(y);
+    for (int x = 0; x < confidence.cols; ++x) {
+      valid.at<uchar>(y, x) = std::isfinite(c[x]) ? 255 : 0;
+      levels.at<uchar>(y, x) = std::isfinite(c[x]) ? cv::saturate_cast<uchar>(255.0 * c[x]) : 0;
+    }
+  }
+  cv::Mat bgr, rgb;
+  cv::applyColorMap(levels, bgr, cv::COLORMAP_VIRIDIS);
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  rgb.setTo(cv::Scalar::all(0), valid == 0);
+  return rgb;
+}
+
 cv::Mat error_map(const cv::Mat& disparity, const cv::Mat& ground_truth,
                   const cv::Mat& nonocc_mask, float threshold) {
   require_disparity(disparity, "error_map: disparity");

@@ -1,6 +1,8 @@
 #pragma once
 // Internal helpers shared by the readers in host/io (not part of the public API).
 // Header-only so that the list of sources in CMakeLists.txt stays as it is.
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,6 +14,13 @@
 #include "host/io/input_error.h"
 
 namespace flexsight::io_detail {
+
+// IEEE float as 4 little-endian bytes, whatever the host's byte order (PFM, PLY).
+inline void encode_float_le(float value, char* out) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  for (int i = 0; i < 4; ++i) out[i] = static_cast<char>((bits >> (8 * i)) & 0xFFu);
+}
 
 // Checks the problems every reader shares before it looks at the content, so the
 // user gets "does not exist" rather than a decoder's vague complaint.

@@ -106,12 +106,6 @@ float decode_float(const unsigned char* b, bool little_endian) {
   return value;
 }
 
-void encode_float_le(float value, char* out) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  for (int i = 0; i < 4; ++i) out[i] = static_cast<char>((bits >> (8 * i)) & 0xFFu);
-}
-
 struct PfmHeader {
   int width = 0;
   int height = 0;
@@ -215,7 +209,7 @@ void write_pfm(const std::string& path, const cv::Mat& image) {
     out.write(header.data(), std::streamsize(header.size()));
     for (int y = image.rows - 1; y >= 0; --y) {  // bottom row first
       const float* src = image.ptr<float>(y);
-      for (int i = 0; i < values_per_row; ++i) encode_float_le(src[i], &row_bytes[4 * i]);
+      for (int i = 0; i < values_per_row; ++i) io_detail::encode_float_le(src[i], &row_bytes[4 * i]);
       out.write(row_bytes.data(), std::streamsize(row_bytes.size()));
     }
     out.close();

@@ -235,12 +235,14 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
   const std::vector<float> raw_left = raw[PMS_VIEW_LEFT].read();
   const std::vector<float> raw_right = raw[PMS_VIEW_RIGHT].read();
   const std::vector<float> planes = filled.planes.read();
+  const std::vector<float> cost_left = fields[PMS_VIEW_LEFT].cost.read();
   result.timings.push_back({"post-processing", seconds_since(start)});
 
   result.disparity = to_mat(disparity, width, height, 1);
   result.raw_left = to_mat(raw_left, width, height, 1);
   result.raw_right = to_mat(raw_right, width, height, 1);
   result.planes_left = planes_to_mat(planes, width, height);
+  result.cost_left = to_mat(cost_left, width, height, 1);
   return result;
 }
 

@@ -61,6 +61,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
   EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
       << "planes_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.cost_left, actual.cost_left)) << "cost_left";
   EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
   ASSERT_EQ(expected.timings.size(), actual.timings.size());
   for (size_t i = 0; i < expected.timings.size(); ++i) {

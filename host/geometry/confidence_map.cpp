@@ -1,0 +1,46 @@
+#include "host/geometry/confidence_map.h"
+
+#include <algorithm>
+#include <opencv2/core/utility.hpp>
+
+#include "fallback/image_pyramid.h"
+#include "fallback/weight_table.h"
+#include "host/pipeline_rules.h"
+#include "kernels/pms_math.h"
+#include "kernels/postprocess_math.h"
+
+namespace flexsight {
+
+cv::Mat confidence_map(const StereoResult& result, const cv::Mat& left_rgb8,
+                       const StereoParams& params) {
+  CV_Assert(result.raw_left.type() == CV_32FC1 && result.cost_left.type() == CV_32FC1);
+  CV_Assert(result.raw_left.isContinuous() && result.raw_right.isContinuous());
+  const int width = result.raw_left.cols;
+  const int height = result.raw_left.rows;
+  const ViewImage left = make_view_image(left_rgb8);
+  const std::vector<float> weights = make_support_weight_table(params.gamma);
+  const int levels = pipeline_level_count(params, width, height);
+  const PmsCostParams cost = plan_level(params, 0, levels, width, height).cost;
+  const float max_dissimilarity =
+      cost.one_minus_alpha * cost.tau_color + cost.alpha * cost.tau_gradient;
+  const float* raw_left = result.raw_left.ptr<float>();
+  const float* raw_right = result.raw_right.ptr<float>();
+
+  cv::Mat confidence(height, width, CV_32FC1);
+  cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const float agreement = pms_confidence(raw_left, raw_right, width, x, y, -1.0f);
+        const float weight_sum =
+            pms_support_weight_sum(left.color.data(), weights.data(), width, height, cost, x, y);
+        const float mean_cost = result.cost_left.at<float>(y, x) / weight_sum;
+        const float match = std::clamp(
+            (max_dissimilarity - mean_cost) / (kMatchSpread * max_dissimilarity), 0.0f, 1.0f);
+        confidence.at<float>(y, x) = agreement * match;
+      }
+    }
+  });
+  return confidence;
+}
+
+}  // namespace flexsight

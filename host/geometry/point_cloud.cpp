@@ -1,0 +1,100 @@
+#include "host/geometry/point_cloud.h"
+
+#include <cmath>
+#include <limits>
+
+#include "host/io/input_error.h"
+
+namespace flexsight {
+namespace {
+
+void check_same_size(const cv::Mat& disparity, const cv::Mat& other, int type, const char* what) {
+  if (other.empty()) return;
+  if (other.size() != disparity.size() || other.type() != type) {
+    throw InputError(what, "is " + std::to_string(other.cols) + "x" + std::to_string(other.rows) +
+                               " with " + std::to_string(other.channels()) +
+                               " channel(s), the disparity " + std::to_string(disparity.cols) +
+                               "x" + std::to_string(disparity.rows));
+  }
+}
+
+bool has_disparity(float d) { return std::isfinite(d) && d >= 0.0f; }
+
+// Slope of the disparity at (x, y) from its valid neighbours, as a plane through the
+// pixel: used when only a disparity map is at hand.
+cv::Vec3f plane_from_slope(const cv::Mat& disparity, int x, int y) {
+  const float d = disparity.at<float>(y, x);
+  auto slope = [&](int dx, int dy) {
+    const int x0 = x - dx, y0 = y - dy, x1 = x + dx, y1 = y + dy;
+    const bool back = x0 >= 0 && y0 >= 0 && has_disparity(disparity.at<float>(y0, x0));
+    const bool ahead = x1 < disparity.cols && y1 < disparity.rows &&
+                       has_disparity(disparity.at<float>(y1, x1));
+    if (back && ahead) return (disparity.at<float>(y1, x1) - disparity.at<float>(y0, x0)) / 2.0f;
+    if (ahead) return disparity.at<float>(y1, x1) - d;
+    if (back) return d - disparity.at<float>(y0, x0);
+    return 0.0f;
+  };
+  const float a = slope(1, 0);
+  const float b = slope(0, 1);
+  return {a, b, d - a * static_cast<float>(x) - b * static_cast<float>(y)};
+}
+
+}  // namespace
+
+PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
+                             const cv::Mat& planes, const cv::Mat& confidence,
+                             const StereoCamera& camera, const CloudFilter& filter) {
+  if (disparity.empty() || disparity.type() != CV_32FC1) {
+    throw InputError("disparity", "must be a non-empty one-channel float map");
+  }
+  check_same_size(disparity, left_rgb, CV_8UC3, "left image");
+  check_same_size(disparity, planes, CV_32FC3, "planes");
+  check_same_size(disparity, confidence, CV_32FC1, "confidence map");
+  if (left_rgb.empty()) throw InputError("left image", "is required for the point colours");
+  if (filter.min_confidence > 0 && confidence.empty()) {
+    throw InputError("confidence filter", "needs a confidence map");
+  }
+  PointCloud cloud;
+  cloud.unit = camera.unit;
+  const Eigen::Matrix4d plane_map = camera.plane_map();
+  for (int y = 0; y < disparity.rows; ++y) {
+    for (int x = 0; x < disparity.cols; ++x) {
+      const float d = disparity.at<float>(y, x);
+      if (!has_disparity(d)) continue;
+      const float conf = confidence.empty() ? 1.0f : confidence.at<float>(y, x);
+      if (!(conf >= filter.min_confidence)) continue;
+      Eigen::Vector3d point;
+      if (!camera.point(x, y, d, point)) continue;
+      if (filter.min_depth > 0 && point.z() < filter.min_depth) continue;
+      if (filter.max_depth > 0 && point.z() > filter.max_depth) continue;
+      const cv::Vec3f plane = planes.empty() ? plane_from_slope(disparity, x, y)
+                                             : planes.at<cv::Vec3f>(y, x);
+      Eigen::Vector3d normal;
+      if (!StereoCamera::plane_normal(plane_map, plane[0], plane[1], plane[2], point, normal)) {
+        normal = -point.normalized();  // degenerate plane: face the camera
+      }
+      cloud.points.push_back(point.cast<float>());
+      cloud.normals.push_back(normal.cast<float>());
+      cloud.colors.push_back(left_rgb.at<cv::Vec3b>(y, x));
+      if (!confidence.empty()) cloud.confidence.push_back(conf);
+      cloud.pixel.push_back(y * disparity.cols + x);
+    }
+  }
+  return cloud;
+}
+
+cv::Mat depth_map(const cv::Mat& disparity, const StereoCamera& camera,
+                  double metres_per_unit_out) {
+  cv::Mat depth(disparity.size(), CV_32FC1);
+  const double scale = camera.metres_per_unit / metres_per_unit_out;
+  for (int y = 0; y < disparity.rows; ++y) {
+    for (int x = 0; x < disparity.cols; ++x) {
+      const float d = disparity.at<float>(y, x);
+      depth.at<float>(y, x) = has_disparity(d) ? static_cast<float>(camera.depth(d) * scale)
+                                               : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return depth;
+}
+
+}  // namespace flexsight

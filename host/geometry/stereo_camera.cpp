@@ -1,0 +1,197 @@
+#include "host/geometry/stereo_camera.h"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <sstream>
+
+#include "host/io/calibration.h"
+#include "host/io/input_error.h"
+
+namespace flexsight {
+namespace {
+
+double unit_in_metres(const std::string& unit, const std::string& path) {
+  if (unit == "m") return 1.0;
+  if (unit == "cm") return 1e-2;
+  if (unit == "mm") return 1e-3;
+  throw InputError(path, "unknown length unit '" + unit + "' (expected mm, cm or m)");
+}
+
+std::string head_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot be opened");
+  std::string head(512, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+}  // namespace
+
+Eigen::Matrix4d reprojection_matrix(double f, double cx, double cy, double cx_right,
+                                    double baseline) {
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  Q(0, 0) = 1;
+  Q(0, 3) = -cx;
+  Q(1, 1) = 1;
+  Q(1, 3) = -cy;
+  Q(2, 3) = f;
+  // W = (d + doffs) / B with doffs = cx_right - cx, so Z = f B / (d + doffs).
+  Q(3, 2) = 1.0 / baseline;
+  Q(3, 3) = (cx_right - cx) / baseline;
+  return Q;
+}
+
+double StereoCamera::depth(double disparity) const {
+  const double w = Q(3, 2) * disparity + Q(3, 3);
+  const double z = Q(2, 2) * disparity + Q(2, 3);
+  if (!(w > 0) || !std::isfinite(disparity)) return std::numeric_limits<double>::quiet_NaN();
+  return z / w;
+}
+
+bool StereoCamera::point(double x, double y, double disparity, Eigen::Vector3d& out) const {
+  if (!std::isfinite(disparity)) return false;
+  const Eigen::Vector4d h = Q * Eigen::Vector4d(x, y, disparity, 1.0);
+  if (!(h[3] > 0)) return false;
+  out = h.head<3>() / h[3];
+  return true;
+}
+
+Eigen::Matrix4d StereoCamera::plane_map() const { return Q.inverse().transpose(); }
+
+bool StereoCamera::plane_normal(const Eigen::Matrix4d& plane_map, double a, double b, double c,
+                                const Eigen::Vector3d& point_on_plane, Eigen::Vector3d& out) {
+  // Q maps (x, y, d, 1) to homogeneous 3D points, so the plane (a, b, -1, c) . u = 0
+  // maps to Q^-T (a, b, -1, c) . P = 0.
+  const Eigen::Vector4d plane = plane_map * Eigen::Vector4d(a, b, -1.0, c);
+  Eigen::Vector3d normal = plane.head<3>();
+  const double norm = normal.norm();
+  if (!(norm > 0) || !std::isfinite(norm)) return false;
+  normal /= norm;
+  // Face the camera at the origin: the normal points against the viewing ray.
+  if (normal.dot(point_on_plane) > 0) normal = -normal;
+  out = normal;
+  return true;
+}
+
+StereoCamera StereoCamera::resized_to(int image_width, int image_height) const {
+  if (width <= 0 || height <= 0 || (width == image_width && height == image_height)) return *this;
+  const double sx = static_cast<double>(image_width) / width;
+  const double sy = static_cast<double>(image_height) / height;
+  // Rounding when an image was resized can change a side by a pixel.
+  if (std::abs(sx * height - image_height) > 1.0 || std::abs(sy * width - image_width) > 1.0) {
+    std::ostringstream why;
+    why << "is for " << width << "x" << height << " images, not " << image_width << "x"
+        << image_height << " (not a uniform resize)";
+    throw InputError(source, why.str());
+  }
+  StereoCamera resized = *this;
+  const double s = sx;
+  Eigen::Matrix4d scale = Eigen::Matrix4d::Identity();
+  scale(0, 0) = scale(1, 1) = scale(2, 2) = 1.0 / s;
+  resized.Q = Q * scale;
+  resized.width = image_width;
+  resized.height = image_height;
+  return resized;
+}
+
+StereoCamera read_middlebury_camera(const std::string& path) {
+  const MiddleburyCalib calib = read_middlebury_calib(path);
+  StereoCamera camera;
+  const double cx = calib.cam0[2];
+  camera.Q = reprojection_matrix(calib.cam0[0], cx, calib.cam0[5], cx + calib.doffs,
+                                 calib.baseline_mm);
+  camera.width = calib.width;
+  camera.height = calib.height;
+  camera.unit = "mm";
+  camera.metres_per_unit = 1e-3;
+  camera.source = path;
+  if (!(calib.baseline_mm > 0)) throw InputError(path, "baseline must be positive");
+  return camera;
+}
+
+StereoCamera read_kitti_camera(const std::string& path) {
+  const KittiCalib calib = read_kitti_calib(path);
+  const double f = calib.P0[0];
+  const double baseline = calib.baseline_m() - (-calib.P0[3] / calib.P0[0]);
+  if (!(f > 0)) throw InputError(path, "P0 has a non-positive focal length");
+  if (!(baseline > 0)) {
+    throw InputError(path, "P1 is not to the right of P0 (baseline " + std::to_string(baseline) +
+                               " m)");
+  }
+  StereoCamera camera;
+  camera.Q = reprojection_matrix(f, calib.P0[2], calib.P0[6], calib.P1[2], baseline);
+  camera.unit = "m";
+  camera.metres_per_unit = 1.0;
+  camera.source = path;
+  return camera;
+}
+
+StereoCamera read_opencv_camera(const std::string& path) {
+  cv::FileStorage storage;
+  try {
+    if (!storage.open(path, cv::FileStorage::READ)) {
+      throw InputError(path, "cannot be read as OpenCV YAML/XML");
+    }
+  } catch (const cv::Exception& error) {
+    throw InputError(path, std::string("is not valid OpenCV YAML/XML: ") + error.err);
+  }
+  cv::Mat q;
+  try {
+    storage["Q"] >> q;
+  } catch (const cv::Exception& error) {
+    throw InputError(path, std::string("Q is not a matrix: ") + error.err);
+  }
+  if (q.empty()) throw InputError(path, "has no Q matrix (the output of cv::stereoRectify)");
+  if (q.rows != 4 || q.cols != 4 || q.channels() != 1) {
+    throw InputError(path, "Q is " + std::to_string(q.rows) + "x" + std::to_string(q.cols) +
+                               ", expected 4x4");
+  }
+  StereoCamera camera;
+  q.convertTo(q, CV_64F);
+  cv::cv2eigen(q, camera.Q);
+  if (!camera.Q.allFinite() || camera.Q(2, 3) == 0 || camera.Q(3, 2) == 0) {
+    throw InputError(path, "Q has no focal length (Q[2][3]) or no baseline (Q[3][2])");
+  }
+  // OpenCV's convention puts Tx < 0 for a right camera to the right, giving Q[3][2] =
+  // -1/Tx > 0. A negative entry means the views are swapped.
+  if (camera.Q(3, 2) < 0) {
+    throw InputError(path, "Q[3][2] < 0: the right camera is left of the left one (views swapped?)");
+  }
+  const cv::FileNode unit = storage["unit"];
+  camera.unit = unit.isString() ? static_cast<std::string>(unit) : std::string("mm");
+  camera.metres_per_unit = unit_in_metres(camera.unit, path);
+  const cv::FileNode size = storage["image_size"];
+  if (size.isSeq() && size.size() == 2) {
+    camera.width = static_cast<int>(size[0]);
+    camera.height = static_cast<int>(size[1]);
+  } else {
+    const cv::FileNode w = storage["image_width"], h = storage["image_height"];
+    if (w.isInt() && h.isInt()) {
+      camera.width = static_cast<int>(w);
+      camera.height = static_cast<int>(h);
+    }
+  }
+  camera.source = path;
+  return camera;
+}
+
+StereoCamera read_stereo_camera(const std::string& path) {
+  const std::string head = head_of(path);
+  if (head.find("cam0") != std::string::npos) return read_middlebury_camera(path);
+  if (head.rfind("P0:", 0) == 0 || head.find("\nP0:") != std::string::npos ||
+      head.find("P_rect_00") != std::string::npos) {
+    return read_kitti_camera(path);
+  }
+  if (head.rfind("%YAML", 0) == 0 || head.rfind("<?xml", 0) == 0 || head.find("Q:") != std::string::npos) {
+    return read_opencv_camera(path);
+  }
+  throw InputError(path, "is not a calibration file this program reads (Middlebury calib.txt "
+                         "with cam0=..., KITTI with P0:/P1:, or OpenCV YAML/XML with Q)");
+}
+
+}  // namespace flexsight
