@@ -204,3 +204,91 @@ TEST_F(Cli, ProfilePrintsTheTimePerKernel) {
   EXPECT_NE(r.out.find("| kernel | calls | total ms | mean ms |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| propagate_spatial | "), std::string::npos) << r.out;
 }
+
+// ------------------------------------------------------------------- 3D outputs --
+
+TEST_F(Cli, StereoWritesDepthCloudConfidenceAndPictures) {
+  const std::string scene = flexsight::testing_support::fixture_dir();
+  const std::string ply = (dir_ / "cloud.ply").string(), depth = (dir_ / "depth.pfm").string(),
+                    conf = (dir_ / "conf.pfm").string(), planes = (dir_ / "planes.pfm").string();
+  RunResult r = run_flexsight("stereo " + scene + " -o " + output_ + " --ply " + ply +
+                                  " --depth " + depth + " --conf " + conf + " --conf-png " +
+                                  (dir_ / "conf.png").string() + " --planes " + planes +
+                                  " --render " + (dir_ / "view.png").string() + quick(),
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat disparity = flexsight::read_pfm(output_);
+  const cv::Mat z = flexsight::read_pfm(depth);
+  ASSERT_EQ(z.size(), disparity.size());
+  for (int y = 0; y < z.rows; y += 17) {
+    for (int x = 0; x < z.cols; x += 13) {  // TeddyH calib: f 750, baseline 80 mm, doffs 26
+      const float d = disparity.at<float>(y, x);
+      EXPECT_NEAR(z.at<float>(y, x), 80.0 * 750.0 / (d + 26.0), 1e-3);
+    }
+  }
+  EXPECT_EQ(flexsight::read_pfm(planes).channels(), 3);
+  const cv::Mat c = flexsight::read_pfm(conf);
+  double low, high;
+  cv::minMaxLoc(c, &low, &high);
+  EXPECT_GE(low, 0.0);
+  EXPECT_LE(high, 1.0);
+  EXPECT_FALSE(cv::imread((dir_ / "conf.png").string()).empty());
+  EXPECT_FALSE(cv::imread((dir_ / "view.png").string()).empty());
+  const std::string header = slurp(ply).substr(0, 400);
+  EXPECT_NE(header.find("element vertex " + std::to_string(disparity.total())), std::string::npos)
+      << header;  // dense result: every pixel becomes a point
+  EXPECT_NE(header.find("property float confidence"), std::string::npos);
+}
+
+TEST_F(Cli, StereoRejectsACloudWithoutCalibrationBeforeMatching) {
+  expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --ndisp 16 --ply " +
+                      (dir_ / "c.ply").string() + quick(),
+                  "--calib");
+}
+
+TEST_F(Cli, CloudRejectsBadCompanionsAndOptions) {
+  const std::string scene = flexsight::testing_support::fixture_dir();
+  const std::string gt = scene + "/disp0GT.pfm", left = scene + "/im0.png";
+  const std::string calib = scene + "/calib.txt";
+  output_ = (dir_ / "cloud.ply").string();
+  expect_rejected("cloud " + gt + " " + left + " -o " + output_, "--calib");
+  const std::string missing = (dir_ / "nope.txt").string();
+  expect_rejected("cloud " + gt + " " + left + " --calib " + missing + " -o " + output_, missing);
+  const std::string small = (dir_ / "small.pfm").string();
+  flexsight::write_pfm(small, cv::Mat(4, 4, CV_32FC3, cv::Scalar::all(0)));
+  expect_rejected("cloud " + gt + " " + left + " --calib " + calib + " --planes " + small +
+                      " -o " + output_,
+                  small);
+  expect_rejected("cloud " + gt + " " + left_ + " --calib " + calib + " -o " + output_, left_);
+  expect_rejected("cloud " + gt + " " + left + " --calib " + calib + " --min-confidence 2 -o " +
+                      output_,
+                  "--min-confidence");
+  expect_rejected("cloud " + gt + " " + left + " --calib " + calib +
+                      " --min-depth 900 --max-depth 800 -o " + output_,
+                  "--max-depth");
+}
+
+TEST_F(Cli, CloudFiltersByDepthRange) {
+  const std::string scene = flexsight::testing_support::fixture_dir();
+  const std::string all = (dir_ / "all.ply").string(), near = (dir_ / "near.ply").string();
+  const std::string common = "cloud " + scene + "/disp0GT.pfm " + scene + "/im0.png --calib " +
+                             scene + "/calib.txt --ply-ascii -o ";
+  ASSERT_EQ(run_flexsight(common + all, dir_).exit_code, 0);
+  ASSERT_EQ(run_flexsight(common + near + " --max-depth 1200", dir_).exit_code, 0);
+  auto depths = [](const std::string& path) {
+    std::istringstream in(slurp(path));
+    std::string line;
+    while (std::getline(in, line) && line != "end_header") {
+    }
+    std::vector<float> z;
+    for (float x, y, zz; in >> x >> y >> zz && std::getline(in, line);) z.push_back(zz);
+    return z;
+  };
+  const std::vector<float> every = depths(all), kept = depths(near);
+  ASSERT_GT(kept.size(), 0u);
+  EXPECT_LT(kept.size(), every.size());
+  size_t expected = 0;
+  for (float z : every) expected += z <= 1200;
+  EXPECT_EQ(kept.size(), expected);
+  for (float z : kept) EXPECT_LE(z, 1200);
+}

@@ -80,9 +80,8 @@ void write_cloud_outputs(const CloudOutputOptions& options, const cv::Mat& dispa
     write_ply(options.ply, cloud, options.ply_format);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("wrote %s (%zu points in %s, normals from %s, %.3f s)\n", options.ply.c_str(),
-                cloud.size(), cloud.unit.c_str(),
-                planes.empty() ? "the disparity slope" : "the matched planes", seconds);
+    std::printf("wrote %s (%zu points in %s, %.3f s)\n", options.ply.c_str(), cloud.size(),
+                cloud.unit.c_str(), seconds);
   }
   if (!options.render.empty()) {
     write_image(options.render, render_point_cloud(cloud));

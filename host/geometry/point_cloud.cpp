@@ -1,5 +1,7 @@
 #include "host/geometry/point_cloud.h"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,11 +41,42 @@ cv::Vec3f plane_from_slope(const cv::Mat& disparity, int x, int y) {
   return {a, b, d - a * static_cast<float>(x) - b * static_cast<float>(y)};
 }
 
+// Least-squares plane d = a x + b y + c through the neighbours of (x, y) that lie within
+// `inlier` of `guide` (the pixel's plane). Coordinates are relative to (x, y) so the
+// 3x3 normal equations stay well conditioned. Returns `guide` when the fit is degenerate.
+cv::Vec3f fitted_plane(const cv::Mat& disparity, int x, int y, const cv::Vec3f& guide,
+                       const NormalOptions& options) {
+  const int r = options.fit_radius;
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  int used = 0;
+  for (int v = std::max(0, y - r); v <= std::min(disparity.rows - 1, y + r); ++v) {
+    const float* row = disparity.ptr<float>(v);
+    for (int u = std::max(0, x - r); u <= std::min(disparity.cols - 1, x + r); ++u) {
+      const float d = row[u];
+      if (!has_disparity(d)) continue;
+      const float predicted = guide[0] * u + guide[1] * v + guide[2];
+      if (!(std::abs(d - predicted) <= options.inlier_disparity)) continue;
+      const Eigen::Vector3d s(u - x, v - y, 1.0);
+      normal_matrix += s * s.transpose();
+      rhs += s * static_cast<double>(d);
+      ++used;
+    }
+  }
+  if (used < 6) return guide;
+  const Eigen::Vector3d abc = normal_matrix.ldlt().solve(rhs);
+  if (!abc.allFinite()) return guide;
+  // Back to absolute pixel coordinates: d = a (u - x) + b (v - y) + c0.
+  return {static_cast<float>(abc[0]), static_cast<float>(abc[1]),
+          static_cast<float>(abc[2] - abc[0] * x - abc[1] * y)};
+}
+
 }  // namespace
 
 PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
                              const cv::Mat& planes, const cv::Mat& confidence,
-                             const StereoCamera& camera, const CloudFilter& filter) {
+                             const StereoCamera& camera, const CloudFilter& filter,
+                             const NormalOptions& normals) {
   if (disparity.empty() || disparity.type() != CV_32FC1) {
     throw InputError("disparity", "must be a non-empty one-channel float map");
   }
@@ -67,8 +100,9 @@ PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
       if (!camera.point(x, y, d, point)) continue;
       if (filter.min_depth > 0 && point.z() < filter.min_depth) continue;
       if (filter.max_depth > 0 && point.z() > filter.max_depth) continue;
-      const cv::Vec3f plane = planes.empty() ? plane_from_slope(disparity, x, y)
-                                             : planes.at<cv::Vec3f>(y, x);
+      cv::Vec3f plane =
+          planes.empty() ? plane_from_slope(disparity, x, y) : planes.at<cv::Vec3f>(y, x);
+      if (normals.fit_radius > 0) plane = fitted_plane(disparity, x, y, plane, normals);
       Eigen::Vector3d normal;
       if (!StereoCamera::plane_normal(plane_map, plane[0], plane[1], plane[2], point, normal)) {
         normal = -point.normalized();  // degenerate plane: face the camera

@@ -29,14 +29,28 @@ struct CloudFilter {
   double max_depth = 0.0;       // 0 = no upper bound
 };
 
+// Where each point's normal comes from.
+struct NormalOptions {
+  // Half size of the window of the least-squares disparity-plane fit; 0 takes the
+  // matcher's per-pixel plane as it is. The fit is the default because a plane's slant
+  // is weakly determined by one 35-pixel window (at a disparity of 13 px an error of
+  // 0.01 px/px in slope turns the normal by about 10 degrees), while a fit over the
+  // final disparities of the neighbourhood averages that noise out.
+  int fit_radius = 8;
+  // Neighbours more than this many pixels of disparity off the pixel's own plane (or,
+  // without planes, its disparity) are left out of the fit, so it does not straddle
+  // depth edges.
+  float inlier_disparity = 1.0f;
+};
+
 // `disparity` CV_32FC1; `left_rgb` CV_8UC3 of the same size (RGB order); `planes`
-// CV_32FC3 (a, b, c) per pixel or empty, then the normal comes from the disparity's
-// local slope (central differences); `confidence` CV_32FC1 or empty. `camera` must
+// CV_32FC3 (a, b, c) per pixel or empty (see NormalOptions); `confidence` CV_32FC1 or empty. `camera` must
 // already be sized to the image (StereoCamera::resized_to). Throws InputError on
 // mismatched sizes or types.
 PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
                              const cv::Mat& planes, const cv::Mat& confidence,
-                             const StereoCamera& camera, const CloudFilter& filter = {});
+                             const StereoCamera& camera, const CloudFilter& filter = {},
+                             const NormalOptions& normals = {});
 
 // Depth Z per pixel in metres_per_unit_out (1e-3 for millimetres, 1 for metres); NaN
 // where the disparity has no depth.

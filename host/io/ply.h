@@ -15,7 +15,7 @@ enum class PlyFormat { binary_little_endian, ascii };
 void write_ply(const std::string& path, const PointCloud& cloud,
                PlyFormat format = PlyFormat::binary_little_endian);
 
-// Bytes of one vertex in the binary format (31, or 35 with confidence).
+// Bytes of one vertex in the binary format (27, or 31 with confidence).
 size_t ply_vertex_bytes(bool with_confidence);
 
 }  // namespace flexsight
