@@ -816,6 +816,14 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
           << region << " " << key;
     }
   }
+  // The confidence map written beside the disparity is read back with it, and the
+  // scene's calib.txt gives the depth error.
+  EXPECT_TRUE(fs::exists(out / "Tiny_conf.pfm"));
+  for (const Json* report : {&json, &again}) {
+    const Json& scene = (*report)["scenes"][0];
+    EXPECT_EQ(scene["confident"]["density"][1].num(), json["scenes"][0]["confident"]["density"][1].num());
+    EXPECT_GE(scene["depth_mm"]["median_abs_all"].num(), 0);
+  }
 }
 
 }  // namespace

@@ -21,6 +21,8 @@
 #include "host/eval/dataset.h"
 #include "host/eval/metrics.h"
 #include "host/eval/report.h"
+#include "host/geometry/confidence_map.h"
+#include "host/geometry/stereo_camera.h"
 #include "host/io/atomic_file.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
@@ -171,8 +173,23 @@ cv::Mat read_result(const std::string& path, const cv::Mat& ground_truth) {
   return disparity;
 }
 
+// The confidence map beside a result file: X_disp.pfm -> X_conf.pfm (what an earlier
+// eval run wrote). Empty when there is none.
+cv::Mat read_companion_confidence(const std::string& result_path, const cv::Mat& ground_truth) {
+  std::string path = result_path;
+  const std::string suffix = "_disp.pfm";
+  if (path.size() < suffix.size() || path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return {};
+  }
+  path.replace(path.size() - suffix.size(), suffix.size(), "_conf.pfm");
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return {};
+  return read_result(path, ground_truth);
+}
+
 struct MatchOutcome {
   cv::Mat disparity;
+  cv::Mat confidence;  // empty when results come from files without a _conf.pfm
   double seconds = 0;
 };
 
@@ -190,7 +207,7 @@ MatchOutcome run_matcher(StereoBackend& backend, const Scene& scene, StereoParam
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.3f s", elapsed.count());
   std::cerr << tag << ": " << seconds << " on the " << used << "\n";
-  return {result.disparity, elapsed.count()};
+  return {result.disparity, confidence_map(result, pair.left, params), elapsed.count()};
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -233,10 +250,12 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
       throw InputError(scene.gt_path, "ground truth differs in size from the images");
     }
     write_pfm(out + "_disp.pfm", outcome.disparity);
+    write_pfm(out + "_conf.pfm", outcome.confidence);
   } else {
     const std::string path = find_result_file(options.results_dir, scene.name);
     std::cerr << tag << ": reading " << path << "\n";
     outcome.disparity = read_result(path, truth.disparity);
+    outcome.confidence = read_companion_confidence(path, truth.disparity);
   }
 
   SceneReport report;
@@ -246,6 +265,12 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
   report.ndisp = scene.ndisp;
   report.seconds = outcome.seconds;
   report.scores = evaluate_disparity(outcome.disparity, truth.disparity, truth.nonocc);
+  report.confident = evaluate_confident(outcome.disparity, truth.disparity, outcome.confidence);
+  if (!scene.calib_path.empty()) {
+    const StereoCamera camera = read_stereo_camera(scene.calib_path)
+                                    .resized_to(truth.disparity.cols, truth.disparity.rows);
+    report.depth = evaluate_depth(outcome.disparity, truth.disparity, outcome.confidence, camera);
+  }
 
   const float max_disp = options.max_disp_color > 0 ? options.max_disp_color
                                                     : static_cast<float>(scene.ndisp);

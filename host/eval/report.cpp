@@ -72,6 +72,79 @@ std::string markdown_table(const EvalReport& report, const char* region,
   return table;
 }
 
+// Mean over the scenes where `value` is finite; NaN when there is none.
+template <typename Value>
+double mean_available(const std::vector<SceneReport>& scenes, Value value) {
+  double sum = 0;
+  int n = 0;
+  for (const SceneReport& scene : scenes) {
+    const double v = value(scene);
+    if (!std::isfinite(v)) continue;
+    sum += v;
+    ++n;
+  }
+  return n ? sum / n : std::nan("");
+}
+
+std::string cell(double value, int decimals) {
+  return std::isfinite(value) ? fixed(value, decimals) : std::string("-");
+}
+
+// Confidence thresholds and depth error, when any scene has them.
+std::string markdown_confidence_and_depth(const EvalReport& report) {
+  bool any = false;
+  for (const SceneReport& s : report.scenes) any = any || s.confident.available || s.depth.available;
+  if (!any) return "";
+  std::string header = "| scene |", rule = "|---|";
+  for (float t : kConfidenceThresholds) {
+    header += " C>=" + threshold_label(t) + " density (%) | C>=" + threshold_label(t) + " bad 2 (%) |";
+    rule += "---:|---:|";
+  }
+  header += " median abs depth error, all (mm) | same, C>=" +
+            threshold_label(kDepthConfidenceThreshold) + " (mm) |";
+  rule += "---:|---:|";
+  std::string text =
+      "## confidence and depth\n\n"
+      "Pixels with ground truth whose confidence (host/geometry/confidence_map.h) passes a "
+      "threshold: their share and their bad-2 (all pixels). Depth error: our depth against the "
+      "depth of the ground-truth disparity through the scene's own calibration; a pixel "
+      "without a result counts as an infinite error.\n\n";
+  text += header + "\n" + rule + "\n";
+  auto row = [&](const std::string& name, auto density, auto bad2, double all, double conf) {
+    std::string line = "| " + name + " |";
+    for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
+      line += " " + cell(density(t), kPercentDecimals) + " | " + cell(bad2(t), kPercentDecimals) + " |";
+    }
+    return line + " " + cell(all, 1) + " | " + cell(conf, 1) + " |\n";
+  };
+  const double nan = std::nan("");
+  for (const SceneReport& s : report.scenes) {
+    text += row(markdown_cell(s.name),
+                [&](size_t t) { return s.confident.available ? s.confident.density_percent[t] : nan; },
+                [&](size_t t) { return s.confident.available ? s.confident.bad2_percent[t] : nan; },
+                s.depth.available ? s.depth.median_abs_mm_all : nan,
+                s.depth.available ? s.depth.median_abs_mm_confident : nan);
+  }
+  const auto& scenes = report.scenes;
+  text += row(
+      "**average**",
+      [&](size_t t) {
+        return mean_available(scenes, [&](const SceneReport& s) {
+          return s.confident.available ? s.confident.density_percent[t] : nan;
+        });
+      },
+      [&](size_t t) {
+        return mean_available(scenes, [&](const SceneReport& s) {
+          return s.confident.available ? s.confident.bad2_percent[t] : nan;
+        });
+      },
+      mean_available(scenes, [&](const SceneReport& s) { return s.depth.available ? s.depth.median_abs_mm_all : nan; }),
+      mean_available(scenes, [&](const SceneReport& s) {
+        return s.depth.available ? s.depth.median_abs_mm_confident : nan;
+      }));
+  return text;
+}
+
 // ---- JSON ------------------------------------------------------------------------
 
 std::string json_string(const std::string& text) {
@@ -125,8 +198,28 @@ std::string json_scene(const SceneReport& scene) {
       << "      \"ndisp\": " << scene.ndisp << ",\n"
       << "      \"seconds\": " << json_number(scene.seconds) << ",\n"
       << "      \"all\": " << json_stats(scene.scores.all, "      ") << ",\n"
-      << "      \"nonocc\": " << json_stats(scene.scores.nonocc, "      ") << "\n"
-      << "    }";
+      << "      \"nonocc\": " << json_stats(scene.scores.nonocc, "      ");
+  if (scene.confident.available) {
+    out << ",\n      \"confident\": {\"thresholds\": [";
+    for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
+      out << (t ? ", " : "") << threshold_label(kConfidenceThresholds[t]);
+    }
+    out << "], \"density\": [";
+    for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
+      out << (t ? ", " : "") << json_number(scene.confident.density_percent[t]);
+    }
+    out << "], \"bad2\": [";
+    for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
+      out << (t ? ", " : "") << json_number(scene.confident.bad2_percent[t]);
+    }
+    out << "]}";
+  }
+  if (scene.depth.available) {
+    out << ",\n      \"depth_mm\": {\"median_abs_all\": "
+        << json_number(scene.depth.median_abs_mm_all) << ", \"median_abs_confident\": "
+        << json_number(scene.depth.median_abs_mm_confident) << "}";
+  }
+  out << "\n    }";
   return out.str();
 }
 
@@ -157,6 +250,8 @@ std::string to_markdown(const EvalReport& report) {
   text += markdown_table(report, "all", &SceneScores::all, report.average_all());
   text += "\n";
   text += markdown_table(report, "nonocc", &SceneScores::nonocc, report.average_nonocc());
+  const std::string extra = markdown_confidence_and_depth(report);
+  if (!extra.empty()) text += "\n" + extra;
   return text;
 }
 

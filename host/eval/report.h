@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "host/eval/confidence_depth_metrics.h"
 #include "host/eval/metrics.h"
 
 namespace flexsight {
@@ -13,6 +14,8 @@ struct SceneReport {
   int height = 0;
   int ndisp = 0;
   SceneScores scores;
+  ConfidentStats confident;  // when a confidence map was at hand
+  DepthStats depth;          // when the scene has a calibration
   double seconds = 0;  // matcher wall time, 0 when results were read from files
 };
 

@@ -21,17 +21,13 @@ Eigen::Vector3f median_point(const std::vector<Eigen::Vector3f>& points) {
   return centre;
 }
 
-// Spread of the cloud around its centre (90th percentile of |x|, |y|), to frame it.
-float half_extent(const std::vector<Eigen::Vector3f>& camera_points) {
-  std::vector<float> spread;
-  spread.reserve(camera_points.size());
-  for (const Eigen::Vector3f& p : camera_points) {
-    if (p.z() > 0) spread.push_back(std::max(std::abs(p.x()), std::abs(p.y())) / p.z());
-  }
-  if (spread.empty()) return 1.0f;
-  const size_t k = spread.size() * 9 / 10;
-  std::nth_element(spread.begin(), spread.begin() + k, spread.end());
-  return std::max(spread[k], 1e-3f);
+// The 2nd and 98th percentiles of `values`: a frame that stray points do not widen.
+std::pair<float, float> robust_range(std::vector<float> values) {
+  const size_t low = values.size() / 50, high = values.size() - 1 - values.size() / 50;
+  std::nth_element(values.begin(), values.begin() + low, values.end());
+  const float a = values[low];
+  std::nth_element(values.begin(), values.begin() + high, values.end());
+  return {a, values[high]};
 }
 
 }  // namespace
@@ -52,10 +48,21 @@ cv::Mat render_point_cloud(const PointCloud& cloud, const CloudView& view) {
   for (size_t i = 0; i < cloud.size(); ++i) {
     camera_points[i] = rotation * (cloud.points[i] - centre) + Eigen::Vector3f(0, 0, distance);
   }
-  const float focal = 0.45f * static_cast<float>(std::min(view.width, view.height)) /
-                      half_extent(camera_points);
-  const float cx = 0.5f * static_cast<float>(view.width);
-  const float cy = 0.5f * static_cast<float>(view.height);
+  // Frame the cloud: its normalised image coordinates' robust range fills 90 % of the
+  // picture, centred.
+  std::vector<float> us, vs;
+  for (const Eigen::Vector3f& p : camera_points) {
+    if (p.z() <= 0) continue;
+    us.push_back(p.x() / p.z());
+    vs.push_back(p.y() / p.z());
+  }
+  if (us.empty()) return image;
+  const auto [u_low, u_high] = robust_range(us);
+  const auto [v_low, v_high] = robust_range(vs);
+  const float focal = 0.9f * std::min(view.width / std::max(u_high - u_low, 1e-6f),
+                                      view.height / std::max(v_high - v_low, 1e-6f));
+  const float cx = 0.5f * view.width - focal * 0.5f * (u_low + u_high);
+  const float cy = 0.5f * view.height - focal * 0.5f * (v_low + v_high);
   // Splat radius: about the spacing of the original pixels on the new image.
   const int radius = std::clamp(
       static_cast<int>(std::lround(std::sqrt(static_cast<double>(view.width) * view.height /

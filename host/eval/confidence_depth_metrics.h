@@ -1,0 +1,41 @@
+#pragma once
+// What a robot cell asks of a stereo result besides bad-N: how good the pixels are that
+// pass a confidence threshold (and how many pass), and how far our depth is from the
+// depth of the ground-truth disparity through the same calibration, in millimetres.
+#include <array>
+#include <opencv2/core.hpp>
+
+#include "host/geometry/stereo_camera.h"
+
+namespace flexsight {
+
+inline constexpr std::array<float, 3> kConfidenceThresholds = {0.25f, 0.5f, 0.75f};
+// The threshold of the "confident pixels" depth column.
+inline constexpr float kDepthConfidenceThreshold = 0.5f;
+
+struct ConfidentStats {
+  bool available = false;
+  // Over pixels with ground truth: the share with confidence >= threshold, and bad-2
+  // (percent) among them.
+  std::array<double, kConfidenceThresholds.size()> density_percent{};
+  std::array<double, kConfidenceThresholds.size()> bad2_percent{};
+};
+
+struct DepthStats {
+  bool available = false;
+  // Median |Z - Z_gt| in millimetres over pixels with ground truth (a pixel without a
+  // result counts as an infinite error), and over those with confidence >=
+  // kDepthConfidenceThreshold (NaN without a confidence map or when none passes).
+  double median_abs_mm_all = 0;
+  double median_abs_mm_confident = 0;
+};
+
+// All maps CV_32FC1 of one size; `confidence` may be empty (then unavailable).
+ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& ground_truth,
+                                  const cv::Mat& confidence);
+
+// `camera` sized to the maps. `confidence` may be empty.
+DepthStats evaluate_depth(const cv::Mat& disparity, const cv::Mat& ground_truth,
+                          const cv::Mat& confidence, const StereoCamera& camera);
+
+}  // namespace flexsight
