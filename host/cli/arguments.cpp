@@ -50,14 +50,14 @@ ParamOption float_option(const char* name, const char* help, float StereoParams:
 
 const std::vector<ParamOption>& param_options() {
   static const std::vector<ParamOption> options = {
-      {"method", "ppms (pyramidal, default) or pms (flat)",
+      {"method", "ppms (pyramidal, default), pms (flat), or OpenCV's sgbm / bm (peers)",
        [](StereoParams& p, const std::string& v) {
          if (v == "ppms") {
            p.method = StereoMethod::PPMS;
          } else if (v == "pms") {
            p.method = StereoMethod::PMS;
          } else {
-           throw InputError(option_subject("method"), "expected ppms or pms, got '" + v + "'");
+           throw InputError(option_subject("method"), "expected ppms, pms, sgbm or bm, got '" + v + "'");
          }
        }},
       integer_option("ndisp", "disparity range [0, ndisp - 1]", &StereoParams::ndisp),
@@ -113,6 +113,16 @@ void consume_stereo_params(std::vector<std::string>& args, StereoParams& params)
     match->set(params, args[++i]);
   }
   args = rest;
+}
+
+std::optional<OpenCvMatcher> take_opencv_method(std::vector<std::string>& args) {
+  for (size_t i = 0; i + 1 < args.size(); ++i) {
+    OpenCvMatcher matcher;
+    if (args[i] != "--method" || !parse_opencv_matcher(args[i + 1], matcher)) continue;
+    args.erase(args.begin() + i, args.begin() + i + 2);
+    return matcher;
+  }
+  return std::nullopt;
 }
 
 double take_number_option(std::vector<std::string>& args, const std::string& name,

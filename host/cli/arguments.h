@@ -3,7 +3,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "fallback/stereo_params.h"
+#include "host/baselines/opencv_stereo.h"
 
 namespace flexsight {
 
@@ -12,6 +15,10 @@ namespace flexsight {
 // removes both tokens. Leaves all other tokens in place, in order. Throws InputError
 // ("option --x: ...") for a missing or malformed value.
 void consume_stereo_params(std::vector<std::string>& args, StereoParams& params);
+
+// --method sgbm|bm picks an OpenCV peer matcher: removes the option and returns it.
+// --method ppms|pms (or none) stays in `args` for consume_stereo_params.
+std::optional<OpenCvMatcher> take_opencv_method(std::vector<std::string>& args);
 
 // Removes "--name value" from args and returns value, or "" if absent.
 std::string take_option(std::vector<std::string>& args, const std::string& name);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -49,6 +50,7 @@ struct EvalOptions {
   std::vector<std::string> scene_names;  // empty = every scene
   float max_disp_color = 0;              // 0 = each scene's ndisp
   StereoParams params;
+  std::optional<OpenCvMatcher> opencv;  // --method sgbm|bm: an OpenCV peer instead
   BackendOptions backend;
 };
 
@@ -96,6 +98,7 @@ EvalOptions parse_options(std::vector<std::string> args) {
   if (std::find(args.begin(), args.end(), "--ndisp") != args.end()) {
     throw InputError("option --ndisp", "eval takes ndisp from each scene; remove the option");
   }
+  options.opencv = take_opencv_method(args);
   consume_stereo_params(args, options.params);
   options.backend = take_backend_options(args);
   options.results_dir = take_option(args, "--results");
@@ -193,6 +196,20 @@ struct MatchOutcome {
   double seconds = 0;
 };
 
+MatchOutcome run_opencv(OpenCvMatcher matcher, const Scene& scene, const std::string& tag) {
+  const StereoPair pair = load_stereo_pair(scene.left_path, scene.right_path);
+  std::cerr << tag << ": " << opencv_matcher_name(matcher) << "\n";
+  const auto start = std::chrono::steady_clock::now();
+  MatchOutcome outcome;
+  outcome.disparity = run_opencv_matcher(matcher, pair.left, pair.right, scene.ndisp);
+  outcome.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3f s", outcome.seconds);
+  std::cerr << tag << ": " << seconds << "\n";
+  return outcome;
+}
+
 MatchOutcome run_matcher(StereoBackend& backend, const Scene& scene, StereoParams params,
                          const std::string& tag) {
   const StereoPair pair = load_stereo_pair(scene.left_path, scene.right_path);
@@ -245,12 +262,13 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
 
   MatchOutcome outcome;
   if (options.results_dir.empty()) {
-    outcome = run_matcher(*backend, scene, options.params, tag);
+    outcome = options.opencv ? run_opencv(*options.opencv, scene, tag)
+                             : run_matcher(*backend, scene, options.params, tag);
     if (outcome.disparity.size() != truth.disparity.size()) {
       throw InputError(scene.gt_path, "ground truth differs in size from the images");
     }
     write_pfm(out + "_disp.pfm", outcome.disparity);
-    write_pfm(out + "_conf.pfm", outcome.confidence);
+    if (!outcome.confidence.empty()) write_pfm(out + "_conf.pfm", outcome.confidence);
   } else {
     const std::string path = find_result_file(options.results_dir, scene.name);
     std::cerr << tag << ": reading " << path << "\n";
@@ -295,15 +313,18 @@ int run_eval_command(std::vector<std::string> args) {
   make_output_dir(options.out_dir);
   // The device is chosen and the kernels are built once, for every scene.
   std::unique_ptr<StereoBackend> backend;
-  if (options.results_dir.empty()) {
+  if (options.results_dir.empty() && options.opencv) {
+    std::cerr << "matching with " << opencv_matcher_settings(*options.opencv) << "\n";
+  } else if (options.results_dir.empty()) {
     backend = std::make_unique<StereoBackend>(options.backend);
     std::cerr << "matching with the " << backend->planned() << "\n";
   }
 
   EvalReport report;
   report.dataset_root = options.dataset_root;
-  report.method = options.results_dir.empty() ? method_name(options.params.method)
-                                              : "files:" + options.results_dir;
+  report.method = !options.results_dir.empty() ? "files:" + options.results_dir
+                  : options.opencv           ? opencv_matcher_name(*options.opencv)
+                                             : method_name(options.params.method);
   report.conventions = kConventions;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string tag = "[" + std::to_string(i + 1) + "/" + std::to_string(scenes.size()) +
