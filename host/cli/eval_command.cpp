@@ -51,6 +51,7 @@ struct EvalOptions {
   float max_disp_color = 0;              // 0 = each scene's ndisp
   StereoParams params;
   std::optional<OpenCvMatcher> opencv;  // --method sgbm|bm: an OpenCV peer instead
+  int repeat = 1;                        // runs per scene; the median time is reported
   BackendOptions backend;
 };
 
@@ -62,6 +63,8 @@ void print_help() {
                "                         the matcher\n"
                "  --out DIR              output folder (default eval_out)\n"
                "  --scenes A,B,C         only these scenes\n"
+               "  --repeat N             match each scene N times and report the median time\n"
+               "                         (the results are identical: the matcher is deterministic)\n"
                "  --max-disp-color N     disparity shown as the top colour (default: the scene's ndisp)\n"
                "The disparity range (ndisp) comes from each scene; --ndisp is rejected.\n"
             << backend_options_help() << "Stereo params:\n"
@@ -106,6 +109,14 @@ EvalOptions parse_options(std::vector<std::string> args) {
   if (!out.empty()) options.out_dir = out;
   const std::string scenes = take_option(args, "--scenes");
   if (!scenes.empty()) options.scene_names = split_list(scenes);
+  const std::string repeat = take_option(args, "--repeat");
+  if (!repeat.empty()) {
+    const float runs = parse_positive("--repeat", repeat);
+    if (runs != static_cast<int>(runs) || runs > 100) {
+      throw InputError("option --repeat", "expected a whole number from 1 to 100, got '" + repeat + "'");
+    }
+    options.repeat = static_cast<int>(runs);
+  }
   const std::string max_disp = take_option(args, "--max-disp-color");
   if (!max_disp.empty()) options.max_disp_color = parse_positive("--max-disp-color", max_disp);
   reject_unknown_options(args);
@@ -262,8 +273,19 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
 
   MatchOutcome outcome;
   if (options.results_dir.empty()) {
-    outcome = options.opencv ? run_opencv(*options.opencv, scene, tag)
-                             : run_matcher(*backend, scene, options.params, tag);
+    std::vector<double> seconds;
+    for (int run = 0; run < options.repeat; ++run) {
+      const std::string run_tag =
+          options.repeat > 1 ? tag + " (run " + std::to_string(run + 1) + "/" +
+                                   std::to_string(options.repeat) + ")"
+                             : tag;
+      outcome = options.opencv ? run_opencv(*options.opencv, scene, run_tag)
+                               : run_matcher(*backend, scene, options.params, run_tag);
+      seconds.push_back(outcome.seconds);
+    }
+    std::sort(seconds.begin(), seconds.end());
+    const size_t mid = seconds.size() / 2;
+    outcome.seconds = seconds.size() % 2 ? seconds[mid] : 0.5 * (seconds[mid - 1] + seconds[mid]);
     if (outcome.disparity.size() != truth.disparity.size()) {
       throw InputError(scene.gt_path, "ground truth differs in size from the images");
     }
