@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -291,4 +292,24 @@ TEST_F(Cli, CloudFiltersByDepthRange) {
   for (float z : every) expected += z <= 1200;
   EXPECT_EQ(kept.size(), expected);
   for (float z : kept) EXPECT_LE(z, 1200);
+}
+
+// ------------------------------------------------------------- OpenCV's matchers --
+
+TEST_F(Cli, OpenCvPeersRunThroughTheSameCommand) {
+  const std::string scene = flexsight::testing_support::fixture_dir();
+  for (const char* method : {"sgbm", "bm"}) {
+    RunResult r = run_flexsight("stereo " + scene + " -o " + output_ + " --method " + method, dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("| nonocc |"), std::string::npos) << r.out;
+    // OpenCV leaves pixels without a result (at least its left border): +inf in the PFM.
+    const cv::Mat disparity = flexsight::read_pfm(output_);
+    int missing = 0;
+    for (int y = 0; y < disparity.rows; ++y) missing += !std::isfinite(disparity.at<float>(y, 0));
+    EXPECT_EQ(missing, disparity.rows) << method;
+    fs::remove(output_);
+  }
+  expect_rejected("stereo " + scene + " -o " + output_ + " --method sgbm --conf " +
+                      (dir_ / "c.pfm").string(),
+                  "disparity only");
 }

@@ -1,6 +1,9 @@
 // flexsight stereo: match one rectified pair (or a MiddEval3 scene folder) and write
 // the disparity as PFM, optionally a colored PNG and scores against a ground truth.
 #include <algorithm>
+#include <chrono>
+#include <memory>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -137,6 +140,7 @@ int run_stereo_command(std::vector<std::string> args) {
     return args.empty() ? 1 : 0;
   }
   StereoParams params;
+  const std::optional<OpenCvMatcher> opencv = take_opencv_method(args);
   const bool ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();
   consume_stereo_params(args, params);
   std::string output = take_option(args, "-o");
@@ -166,17 +170,36 @@ int run_stereo_command(std::vector<std::string> args) {
   if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
   validate_inputs(pair.left, pair.right, params);  // before the kernels are built
   check_cloud_outputs(cloud_options, pair.left.cols, pair.left.rows);
-  StereoBackend backend(backend_options);
-  std::cerr << method_name(params.method) << " on " << pair.left.cols << "x" << pair.left.rows
-            << ", ndisp " << params.ndisp << ", " << backend.planned() << "\n";
+  if (opencv && (!raw.empty() || !planes.empty() || !conf.empty() || !conf_png.empty() ||
+                 backend_options.profile)) {
+    throw InputError("option --method", std::string(opencv_matcher_name(*opencv)) +
+                                            " gives a disparity only: no --raw, --planes, "
+                                            "--conf, --conf-png or --profile");
+  }
   std::string used;
-  const StereoResult result = backend.run(pair.left, pair.right, params, progress, &used);
+  StereoResult result;
+  std::unique_ptr<StereoBackend> backend;
+  if (opencv) {
+    used = opencv_matcher_settings(*opencv);
+    std::cerr << opencv_matcher_name(*opencv) << " on " << pair.left.cols << "x"
+              << pair.left.rows << ", ndisp " << params.ndisp << "\n";
+    const auto start = std::chrono::steady_clock::now();
+    result.disparity = run_opencv_matcher(*opencv, pair.left, pair.right, params.ndisp);
+    result.timings.push_back(
+        {opencv_matcher_name(*opencv),
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  } else {
+    backend = std::make_unique<StereoBackend>(backend_options);
+    std::cerr << method_name(params.method) << " on " << pair.left.cols << "x" << pair.left.rows
+              << ", ndisp " << params.ndisp << ", " << backend->planned() << "\n";
+    result = backend->run(pair.left, pair.right, params, progress, &used);
+  }
 
   write_pfm(output, result.disparity);
   if (!raw.empty()) write_pfm(raw, result.raw_left);
   if (!planes.empty()) write_pfm(planes, result.planes_left);
   cv::Mat confidence;
-  if (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d()) {
+  if (!opencv && (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d())) {
     confidence = confidence_map(result, pair.left, params);
   }
   if (!conf.empty()) write_pfm(conf, confidence);
@@ -187,7 +210,7 @@ int run_stereo_command(std::vector<std::string> args) {
   std::printf("| stage (%s) | seconds |\n|---|---|\n", used.c_str());
   for (const StageTiming& t : result.timings) std::printf("| %s | %.3f |\n", t.stage.c_str(), t.seconds);
   std::printf("| total | %.3f |\n", result.total_seconds());
-  if (backend_options.profile) print_kernel_timings(backend.kernel_timings());
+  if (backend_options.profile) print_kernel_timings(backend->kernel_timings());
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
   write_cloud_outputs(cloud_options, result.disparity, pair.left, result.planes_left, confidence);
   if (!job.gt.empty()) print_scores(result.disparity, job);
