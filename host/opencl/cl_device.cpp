@@ -139,6 +139,7 @@ std::vector<DeviceInfo> enumerate_devices() {
       info.platform_name = platform_name;
       info.name = device_string(id, CL_DEVICE_NAME);
       info.version = device_string(id, CL_DEVICE_VERSION);
+      info.driver_version = device_string(id, CL_DRIVER_VERSION);
       info.type = device_value<cl_device_type>(id, CL_DEVICE_TYPE);
       info.compute_units = device_value<cl_uint>(id, CL_DEVICE_MAX_COMPUTE_UNITS);
       info.global_memory = device_value<cl_ulong>(id, CL_DEVICE_GLOBAL_MEM_SIZE);

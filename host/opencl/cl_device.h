@@ -15,7 +15,8 @@ struct DeviceInfo {
   int index_in_platform = 0;  // position among the devices of its platform
   std::string platform_name;
   std::string name;
-  std::string version;  // CL_DEVICE_VERSION
+  std::string version;         // CL_DEVICE_VERSION
+  std::string driver_version;  // CL_DRIVER_VERSION (benchmark reports name the driver)
   cl_device_type type = 0;
   cl_uint compute_units = 0;      // CL_DEVICE_MAX_COMPUTE_UNITS
   cl_ulong global_memory = 0;     // CL_DEVICE_GLOBAL_MEM_SIZE, bytes

@@ -1,8 +1,7 @@
 // Every PatchMatch stage kernel against its function of fallback/patchmatch_reference.cpp
-// on the same inputs, byte for byte, with a guard region after every output.
+// on the same inputs (tests/kernel_cases.h, which the benchmarks time too), byte for
+// byte, with a guard region after every output.
 #include <gtest/gtest.h>
-
-#include <random>
 
 #include "opencl_test_support.h"
 
@@ -11,37 +10,11 @@ namespace {
 
 class PatchMatchStage : public ::testing::TestWithParam<LevelCase> {};
 
-// A random confidence in [0, 1) per pixel: about half the pixels count as confident at
-// the threshold the tests use.
-std::vector<float> random_confidence(int pixels, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<float> confidence(pixels);
-  for (float& c : confidence) c = u(rng);
-  return confidence;
-}
-
-// The two fields after a first spatial step, so that propagation and refinement
-// start from planes that differ between neighbours and views.
-void advance(LevelFixture& f) {
-  for (int view = 0; view < 2; ++view) propagate_spatial(f.in, view, 0, f.fields[view]);
-}
-
 // Fails the test when a stage left every plane of a field of more than a few pixels as
 // it was: the comparison would then prove little.
 void expect_some_change(const PlaneField& before, const PlaneField& after) {
   if (before.pixels() < 500) return;
   EXPECT_NE(before.planes, after.planes) << "the reference stage changed no plane";
-}
-
-SearchSchedule schedule_for(const LevelFixture& f) {
-  SearchSchedule schedule;
-  schedule.initial_range = 0.5f * static_cast<float>(f.in.ndisp);
-  schedule.normal_range = 1.0f;
-  schedule.min_range = 0.25f;
-  schedule.confident_threshold = 0.5f;
-  schedule.confident_max_range = 2.0f;
-  return schedule;
 }
 
 TEST_P(PatchMatchStage, InitRandomPlanes) {
@@ -103,7 +76,7 @@ TEST_P(PatchMatchStage, PropagateView) {
 TEST_P(PatchMatchStage, RefineRandomWithoutConfidence) {
   LevelFixture f(GetParam());
   advance(f);
-  const SearchSchedule schedule = schedule_for(f);
+  const SearchSchedule schedule = search_schedule(f.in.ndisp);
   for (int view = 0; view < 2; ++view) {
     for (int colour = 0; colour < 2; ++colour) {
       DeviceField field = upload(f.fields[view], "field");
@@ -119,7 +92,7 @@ TEST_P(PatchMatchStage, RefineRandomWithoutConfidence) {
 TEST_P(PatchMatchStage, RefineRandomWithConfidence) {
   LevelFixture f(GetParam());
   advance(f);
-  const SearchSchedule schedule = schedule_for(f);
+  const SearchSchedule schedule = search_schedule(f.in.ndisp);
   const std::vector<float> confidence =
       random_confidence(f.fields[0].pixels(), GetParam().seed);
   const Buffer<float> device_confidence = guarded(confidence, "confidence");
