@@ -24,6 +24,8 @@ step() { echo "[$(date +%H:%M:%S)] $*" >&2; }
 [ -z "$kitti" ] || [ -d "$kitti" ] || { echo "benchmark_report: $kitti: no such folder" >&2; exit 1; }
 step "building"
 cmake --build build -j"$(nproc)" >/dev/null
+commit="\`$(git rev-parse --short HEAD)\`"
+git diff --quiet HEAD -- . 2>/dev/null || commit="$commit with uncommitted changes"
 rm -rf "$runs"
 mkdir -p "$runs" "$out"
 
@@ -46,7 +48,7 @@ run_dataset() {  # name root reference_scenes
     step "$name: $label ($arguments)"
     # shellcheck disable=SC2086  # arguments are words on purpose
     "$flexsight" eval "$root" --out "$runs/$name-$label" $arguments 2>&1 >/dev/null |
-      grep --line-buffered -E '^\[[0-9]+/[0-9]+\] [^:]+: [0-9.]+ s' | sed -e 's/ on the OpenCL path on .*/ (OpenCL)/' -e 's/^/    /' >&2 || true
+      grep --line-buffered -E '^\[[0-9]+/[0-9]+\] [^:]+: [0-9.]+ s' | sed -u -e 's/ on the OpenCL path on .*/ (OpenCL)/' -e 's/^/    /' >&2 || true
     [ -f "$runs/$name-$label/report.json" ] || { echo "benchmark_report: $label failed on $name" >&2; exit 1; }
   done
 }
@@ -60,5 +62,5 @@ fi
 step "writing $out"
 /usr/bin/python3 scripts/make_report.py --runs "$runs" --out "$out" --middlebury "$middlebury" \
   ${kitti:+--kitti "$kitti"} --montage "$montage_scenes" --repeat "$repeat" \
-  --reference-scenes "$reference_scenes" --flexsight "$flexsight"
+  --reference-scenes "$reference_scenes" --flexsight "$flexsight" --commit "$commit"
 step "done: $out/README.md"

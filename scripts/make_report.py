@@ -226,7 +226,7 @@ def montage(runs, runs_dir, dataset, data_root, scene, path, left_name, gt_loade
     for i, tile in enumerate(bottom):
         if tile is not None:
             sheet.paste(tile, (i * w, h))
-    sheet.save(path)
+    sheet.save(path, quality=88)
 
 
 def command_output(command):
@@ -236,7 +236,7 @@ def command_output(command):
         return ""
 
 
-def machine_lines(flexsight):
+def machine_lines(flexsight, commit):
     cpu = ""
     for line in command_output(["lscpu"]).splitlines():
         if line.startswith("Model name"):
@@ -244,15 +244,19 @@ def machine_lines(flexsight):
     # The device rows of the table `flexsight devices` prints.
     devices = [l for l in command_output([flexsight, "devices"]).splitlines()
                if l.startswith("| ") and l[2:3].isdigit()]
-    commit = command_output(["git", "rev-parse", "--short", "HEAD"])
-    dirty = command_output(["git", "status", "--porcelain", "--untracked-files=no"])
     return [
         f"- Machine: {cpu or platform.processor()}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}",
         "- OpenCL devices (`flexsight devices`):",
         *[f"  - {d.strip('| ').replace(' | ', ', ')}" for d in devices[:6]],
-        f"- Commit: `{commit}`" + (" with uncommitted changes" if dirty else ""),
+        f"- Commit: {commit} (the build the runs used)",
         f"- Date: {datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')}",
     ]
+
+
+def current_commit():
+    commit = command_output(["git", "rev-parse", "--short", "HEAD"])
+    dirty = command_output(["git", "status", "--porcelain", "--untracked-files=no"])
+    return f"`{commit}`" + (" with uncommitted changes" if dirty else "")
 
 
 def ratio(a, b):
@@ -269,6 +273,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--reference-scenes", default="ArtL,Teddy,Motorcycle")
     parser.add_argument("--flexsight", default="build/flexsight")
+    parser.add_argument("--commit", help="the commit the runs were built from (default: HEAD now)")
     args = parser.parse_args()
     os.makedirs(os.path.join(args.out, "json"), exist_ok=True)
 
@@ -286,7 +291,7 @@ def main():
             continue
         calib = open(os.path.join(args.middlebury, scene, "calib.txt")).read()
         ndisp = int([l for l in calib.splitlines() if l.startswith("ndisp")][0].split("=")[1])
-        path = f"montage_{scene}.png"
+        path = f"montage_{scene}.jpg"
         montage(mb, args.runs, "middlebury", args.middlebury, scene, os.path.join(args.out, path),
                 os.path.join(args.middlebury, scene, "im0.png"),
                 lambda s=scene: read_pfm(os.path.join(args.middlebury, s, "disp0GT.pfm")), ndisp)
@@ -313,7 +318,7 @@ def main():
             "```sh",
             f"scripts/benchmark_report.sh {args.middlebury}" + (f" {args.kitti}" if args.kitti else ""),
             "```", "",
-            *machine_lines(args.flexsight), "",
+            *machine_lines(args.flexsight, args.commit or current_commit()), "",
             "## Conventions", "",
             f"- Middlebury 2014 training set at quarter resolution (MiddEval3 `trainingQ`, {len(names)} scenes), "
             "errors in pixels at that resolution (bad 2 here is bad 8 at full resolution); "
@@ -366,7 +371,7 @@ def main():
                  "Sparse LiDAR ground truth (`disp_occ` for all, `disp_noc` for non-occluded), ndisp 256, "
                  "one pair only: indicative, not a KITTI score.", "",
                  table_two(kt), ""]
-        path = "montage_kitti.png"
+        path = "montage_kitti.jpg"
         montage(kt, args.runs, "kitti", args.kitti, kitti_scene, os.path.join(args.out, path),
                 os.path.join(args.kitti, "training", "colored_0", kitti_scene + ".png"),
                 lambda: kitti_ground_truth(args.kitti, kitti_scene), 128)
