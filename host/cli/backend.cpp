@@ -69,6 +69,7 @@ struct StereoBackend::Impl {
   BackendOptions options;
   std::unique_ptr<opencl::OpenClMatcher> matcher;  // null: the reference path
   std::vector<opencl::KernelTiming> kernel_timings;
+  size_t peak_device_bytes = 0;
 };
 
 StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -110,10 +111,12 @@ StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
                                 const StereoParams& params, const ProgressCallback& progress,
                                 std::string* used) {
   impl_->kernel_timings.clear();
+  impl_->peak_device_bytes = 0;
   if (impl_->matcher) {
     try {
       StereoResult result = impl_->matcher->run(left_rgb8, right_rgb8, params, progress);
       if (impl_->options.profile) impl_->kernel_timings = impl_->matcher->kernel_timings();
+      impl_->peak_device_bytes = impl_->matcher->peak_buffer_bytes();
       if (used) *used = planned();
       return result;
     } catch (const opencl::OpenClError& error) {
@@ -130,6 +133,8 @@ StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
 std::vector<opencl::KernelTiming> StereoBackend::kernel_timings() const {
   return impl_->kernel_timings;
 }
+
+size_t StereoBackend::peak_device_bytes() const { return impl_->peak_device_bytes; }
 
 std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
   std::vector<OpenClDeviceRow> rows;
@@ -186,6 +191,8 @@ StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
 }
 
 std::vector<opencl::KernelTiming> StereoBackend::kernel_timings() const { return {}; }
+
+size_t StereoBackend::peak_device_bytes() const { return 0; }
 
 std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
   if (why) *why = kNoOpenCl;

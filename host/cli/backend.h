@@ -66,6 +66,10 @@ class StereoBackend {
   // options.profile; empty otherwise.
   std::vector<opencl::KernelTiming> kernel_timings() const;
 
+  // Device memory the last run() held at most in its buffers (bytes); 0 when the
+  // reference path ran.
+  size_t peak_device_bytes() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

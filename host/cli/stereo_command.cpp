@@ -1,5 +1,7 @@
 // flexsight stereo: match one rectified pair (or a MiddEval3 scene folder) and write
 // the disparity as PFM, optionally a colored PNG and scores against a ground truth.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -132,6 +134,23 @@ void print_kernel_timings(const std::vector<opencl::KernelTiming>& timings) {
               calls > 0 ? seconds * 1e3 / calls : 0.0);
 }
 
+// --profile: memory against the yardstick, the input pair (RGB8) and the planes
+// of both views (a, b, c as float): 30 bytes per pixel.
+void print_memory(size_t device_bytes, int width, int height) {
+  const double input_and_planes = 30.0 * width * height;
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  const double rss = static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux: kilobytes
+  if (device_bytes > 0) {
+    std::printf("device memory: %.1f MiB at most in buffers = %.1f x the input pair and its "
+                "planes (%.1f MiB)\n",
+                device_bytes / 1048576.0, device_bytes / input_and_planes,
+                input_and_planes / 1048576.0);
+  }
+  std::printf("process peak resident memory: %.1f MiB (with the OpenCL runtime's own)\n",
+              rss / 1048576.0);
+}
+
 }  // namespace
 
 int run_stereo_command(std::vector<std::string> args) {
@@ -210,7 +229,10 @@ int run_stereo_command(std::vector<std::string> args) {
   std::printf("| stage (%s) | seconds |\n|---|---|\n", used.c_str());
   for (const StageTiming& t : result.timings) std::printf("| %s | %.3f |\n", t.stage.c_str(), t.seconds);
   std::printf("| total | %.3f |\n", result.total_seconds());
-  if (backend_options.profile) print_kernel_timings(backend->kernel_timings());
+  if (backend_options.profile) {
+    print_kernel_timings(backend->kernel_timings());
+    print_memory(backend->peak_device_bytes(), pair.left.cols, pair.left.rows);
+  }
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
   write_cloud_outputs(cloud_options, result.disparity, pair.left, result.planes_left, confidence);
   if (!job.gt.empty()) print_scores(result.disparity, job);

@@ -3,6 +3,7 @@
 // queue (the pipeline only transfers at its start and end, so blocking costs nothing
 // and keeps the host data's lifetime obvious). The Context must outlive the buffer.
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "host/opencl/cl_context.h"
@@ -18,6 +19,34 @@ void read_bytes(Context& context, cl_mem buffer, size_t offset, size_t bytes, vo
 void fill_bytes(Context& context, cl_mem buffer, const void* pattern, size_t pattern_bytes,
                 size_t bytes, const std::string& what);
 
+// Counts a buffer's bytes on its context while it lives (moves carry the count along).
+class BufferBytes {
+ public:
+  BufferBytes() = default;
+  BufferBytes(Context& context, size_t bytes) : context_(&context), bytes_(bytes) {
+    context.note_allocated(bytes);
+  }
+  BufferBytes(BufferBytes&& other) noexcept
+      : context_(std::exchange(other.context_, nullptr)), bytes_(other.bytes_) {}
+  BufferBytes& operator=(BufferBytes&& other) noexcept {
+    if (this != &other) {
+      release();
+      context_ = std::exchange(other.context_, nullptr);
+      bytes_ = other.bytes_;
+    }
+    return *this;
+  }
+  ~BufferBytes() { release(); }
+
+ private:
+  void release() {
+    if (context_) context_->note_released(bytes_);
+    context_ = nullptr;
+  }
+  Context* context_ = nullptr;
+  size_t bytes_ = 0;
+};
+
 template <typename T>
 class Buffer {
   static_assert(std::is_trivially_copyable_v<T>, "device buffers hold plain values");
@@ -27,7 +56,7 @@ class Buffer {
   // Uninitialised; `what` names it in error messages ("planes (left)").
   Buffer(Context& context, size_t size, std::string what = "buffer")
       : context_(&context), size_(size), what_(std::move(what)),
-        mem_(create_buffer(context, bytes(), what_)) {}
+        mem_(create_buffer(context, bytes(), what_)), counted_(context, bytes()) {}
   Buffer(Context& context, const std::vector<T>& values, std::string what = "buffer")
       : Buffer(context, values.size(), std::move(what)) {
     write(values);
@@ -62,6 +91,7 @@ class Buffer {
   size_t size_ = 0;
   std::string what_;
   MemHandle mem_;
+  BufferBytes counted_;
 };
 
 }  // namespace flexsight::opencl

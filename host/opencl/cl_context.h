@@ -34,6 +34,18 @@ class Context {
   // Blocks until every enqueued command has finished; throws on a failed command.
   void finish();
 
+  // Bytes of the Buffers alive on this context now, and the most alive at once since
+  // the last reset_peak(): the device memory a run needs (programs and the runtime's
+  // own allocations are not counted).
+  size_t buffer_bytes() const { return buffer_bytes_; }
+  size_t peak_buffer_bytes() const { return peak_buffer_bytes_; }
+  void reset_peak() { peak_buffer_bytes_ = buffer_bytes_; }
+  void note_allocated(size_t bytes) {
+    buffer_bytes_ += bytes;
+    if (buffer_bytes_ > peak_buffer_bytes_) peak_buffer_bytes_ = buffer_bytes_;
+  }
+  void note_released(size_t bytes) { buffer_bytes_ -= bytes; }
+
  private:
   DeviceInfo device_;
   ContextHandle context_;
@@ -41,6 +53,8 @@ class Context {
   ProgramCache programs_;
   size_t max_work_group_size_ = 1;
   size_t max_work_item_sizes_[3] = {1, 1, 1};
+  size_t buffer_bytes_ = 0;
+  size_t peak_buffer_bytes_ = 0;
 };
 
 }  // namespace flexsight::opencl

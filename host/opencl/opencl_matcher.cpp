@@ -108,6 +108,8 @@ std::vector<KernelTiming> OpenClMatcher::kernel_timings() const {
   return state_->profiler.summary();
 }
 
+size_t OpenClMatcher::peak_buffer_bytes() const { return state_->context.peak_buffer_bytes(); }
+
 std::string OpenClMatcher::device_description() const {
   return state_->context.device().description();
 }
@@ -115,6 +117,7 @@ std::string OpenClMatcher::device_description() const {
 StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                                 const StereoParams& params, const ProgressCallback& progress) {
   std::string stage = "start";
+  state_->context.reset_peak();
   try {
     return run_stages(left_rgb8, right_rgb8, params, progress, stage);
   } catch (const OpenClError& error) {

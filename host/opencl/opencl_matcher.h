@@ -53,6 +53,9 @@ class OpenClMatcher {
   // Per-kernel device times of the last run (empty unless options.profile).
   std::vector<KernelTiming> kernel_timings() const;
 
+  // Device memory the last run() held at most in its buffers, in bytes.
+  size_t peak_buffer_bytes() const;
+
   // The chosen device, as in list_opencl_devices().
   std::string device_description() const;
 

@@ -77,6 +77,20 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   }
 }
 
+// The memory yardstick: device buffers at most 10x the input pair (RGB8) plus
+// the planes of both views (3 floats each), i.e. 300 bytes per pixel. Measured: about
+// 5x (pyramid, both views' planes, costs and post-processing buffers).
+TEST(PipelineMemory, DeviceBuffersStayWithinTenTimesTheInputPairAndItsPlanes) {
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
+  StereoParams params;
+  params.ndisp = 32;
+  matcher().run(crop.left, crop.right, params);
+  const double pixels = static_cast<double>(crop.left.total());
+  const double yardstick = 30.0 * pixels;
+  EXPECT_GT(matcher().peak_buffer_bytes(), 2 * yardstick) << "the counter counts something";
+  EXPECT_LE(matcher().peak_buffer_bytes(), 10 * yardstick);
+}
+
 TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
   const testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoParams params;

@@ -77,6 +77,21 @@ TEST(OpenClRuntime, BuffersRoundTripAndRefuseOutOfRangeTransfers) {
   EXPECT_TRUE(empty.read().empty());
 }
 
+TEST(OpenClRuntime, TheContextCountsLiveBufferBytesAndTheirPeak) {
+  Context& ctx = context();
+  const size_t before = ctx.buffer_bytes();
+  ctx.reset_peak();
+  {
+    Buffer<float> a(ctx, 1000, "a");
+    Buffer<std::uint8_t> b(ctx, 24, "b");
+    EXPECT_EQ(ctx.buffer_bytes(), before + 4024);
+    Buffer<float> moved = std::move(a);  // a move carries the count, it does not double it
+    EXPECT_EQ(ctx.buffer_bytes(), before + 4024);
+  }
+  EXPECT_EQ(ctx.buffer_bytes(), before);
+  EXPECT_EQ(ctx.peak_buffer_bytes(), before + 4024);
+}
+
 TEST(OpenClRuntime, KernelsCheckArgumentsAndWorkSizes) {
   Kernel kernel(context(), context().program(kTiny), "tiny");
   Buffer<float> out = guarded_output<float>(7 * 5, "tiny out");
