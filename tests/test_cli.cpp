@@ -267,6 +267,9 @@ TEST_F(Cli, CloudRejectsBadCompanionsAndOptions) {
   expect_rejected("cloud " + gt + " " + left + " --calib " + calib +
                       " --min-depth 900 --max-depth 800 -o " + output_,
                   "--max-depth");
+  expect_rejected("cloud " + gt + " " + left + " --calib " + calib + " --min-confidence 0.5 -o " +
+                      output_,
+                  "--min-confidence");
 }
 
 TEST_F(Cli, CloudFiltersByDepthRange) {

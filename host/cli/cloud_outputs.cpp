@@ -74,6 +74,11 @@ void write_cloud_outputs(const CloudOutputOptions& options, const cv::Mat& dispa
     std::printf("wrote %s (depth in %s)\n", options.depth.c_str(), options.depth_unit.c_str());
   }
   if (options.ply.empty() && options.render.empty()) return;
+  if (options.filter.min_confidence > 0 && confidence.empty()) {
+    throw InputError("option --min-confidence",
+                     "needs a confidence map ('stereo' makes one with PatchMatch; 'cloud' "
+                     "takes one with --conf)");
+  }
   const PointCloud cloud =
       build_point_cloud(disparity, left_rgb, planes, confidence, camera, options.filter);
   if (!options.ply.empty()) {
