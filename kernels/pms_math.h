@@ -220,6 +220,17 @@ PMS_INLINE int pms_first_offset(int radius, int step, int lowest) {
   return -((-low) / step) * step;
 }
 
+/* The window offsets of pixel (px, py) that lie inside the image, on the grid k*step:
+ * dy in [y_begin, y_end], dx in [x_begin, x_end]. Every window sum uses these, so the
+ * cost and its weight sum run over the same pixels. */
+PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, int px, int py,
+                                  int* y_begin, int* y_end, int* x_begin, int* x_end) {
+  *y_begin = pms_first_offset(params.radius, params.step, -py);
+  *y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
+  *x_begin = pms_first_offset(params.radius, params.step, -px);
+  *x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
+}
+
 /*
  * Adaptive-support-weighted matching cost of plane (a, b, c) at pixel (px, py) of the
  * reference view against the other view (Bleyer et al. 2011, eq. 2-4):
@@ -243,10 +254,8 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
                                 PmsCostParams params, int px, int py, float a, float b,
                                 float c, float direction, float bound) {
   const PMS_GLOBAL float* centre = ref_color + 4 * (py * width + px);
-  int y_begin = pms_first_offset(params.radius, params.step, -py);
-  int y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
-  int x_begin = pms_first_offset(params.radius, params.step, -px);
-  int x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
+  int y_begin, y_end, x_begin, x_end;
+  pms_window_bounds(params, width, height, px, py, &y_begin, &y_end, &x_begin, &x_end);
   float max_x = (float)(width - 1);
   float sum = 0.0f;
   for (int dy = y_begin; dy <= y_end; dy += params.step) {
@@ -293,10 +302,8 @@ PMS_INLINE float pms_support_weight_sum(const PMS_GLOBAL float* ref_color,
                                         const PMS_GLOBAL float* weights, int width, int height,
                                         PmsCostParams params, int px, int py) {
   const PMS_GLOBAL float* centre = ref_color + 4 * (py * width + px);
-  int y_begin = pms_first_offset(params.radius, params.step, -py);
-  int y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
-  int x_begin = pms_first_offset(params.radius, params.step, -px);
-  int x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
+  int y_begin, y_end, x_begin, x_end;
+  pms_window_bounds(params, width, height, px, py, &y_begin, &y_end, &x_begin, &x_end);
   float sum = 0.0f;
   for (int dy = y_begin; dy <= y_end; dy += params.step) {
     const PMS_GLOBAL float* ref_row = ref_color + 4 * (py + dy) * width;

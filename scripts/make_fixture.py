@@ -15,24 +15,7 @@ import sys
 import numpy as np
 from PIL import Image
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        magic = f.readline().strip()
-        if magic != b"Pf":
-            raise SystemExit(f"{path}: expected a 1-channel PFM, got {magic!r}")
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        dtype = "<f4" if scale < 0 else ">f4"
-        data = np.frombuffer(f.read(width * height * 4), dtype=dtype)
-    return np.flipud(data.reshape(height, width)).astype(np.float32)
-
-
-def write_pfm(path, image):
-    height, width = image.shape
-    with open(path, "wb") as f:
-        f.write(b"Pf\n%d %d\n-1\n" % (width, height))
-        f.write(np.flipud(image).astype("<f4").tobytes())
+from pfm_io import read_pfm, write_pfm
 
 
 def halve_image(path):
@@ -50,7 +33,7 @@ def main():
     os.makedirs(out, exist_ok=True)
     halve_image(os.path.join(source, "im0.png")).save(os.path.join(out, "im0.png"), optimize=True)
     halve_image(os.path.join(source, "im1.png")).save(os.path.join(out, "im1.png"), optimize=True)
-    gt = read_pfm(os.path.join(source, "disp0GT.pfm"))
+    gt = read_pfm(os.path.join(source, "disp0GT.pfm"), expect_channels=1)
     h, w = gt.shape[0] // 2 * 2, gt.shape[1] // 2 * 2
     write_pfm(os.path.join(out, "disp0GT.pfm"), gt[:h:2, :w:2] / 2.0)
     mask = np.asarray(Image.open(os.path.join(source, "mask0nocc.png")))

@@ -21,6 +21,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image, ImageDraw  # noqa: E402
 
+from pfm_io import read_pfm  # noqa: E402
+
 # Report order, with the words a reader sees.
 METHODS = [
     ("ppms-opencl", "PPMS (ours, OpenCL)"),
@@ -180,16 +182,6 @@ def plot_runtime_vs_bad2(runs, path, all_names, subset):
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
-
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    channels = 3 if kind == b"PF" else 1
-    return np.flipud(data.reshape(height, width, channels)).squeeze()
 
 
 def colorize(disparity, ndisp):

@@ -14,15 +14,9 @@ import meshio
 import numpy as np
 from PIL import Image
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    channels = 3 if kind == b"PF" else 1
-    return np.flipud(data.reshape(height, width, channels)).squeeze()
+# The project's PFM reader (scripts/pfm_io.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from pfm_io import read_pfm  # noqa: E402
 
 
 def read_calib(path):

@@ -52,22 +52,28 @@ std::string cloud_output_options_help() {
          "  --min-depth Z, --max-depth Z  keep points in this depth range (calibration unit)\n";
 }
 
-void check_cloud_outputs(const CloudOutputOptions& options, int width, int height) {
-  if (!options.wants_3d()) return;
+namespace {
+
+// The camera of --calib, sized to the images; throws InputError when it is missing or bad.
+StereoCamera sized_camera(const CloudOutputOptions& options, int width, int height) {
   if (options.calib.empty()) {
     throw InputError("option --calib", "a calibration file is needed for --ply/--depth/--render");
   }
-  read_stereo_camera(options.calib).resized_to(width, height);
+  return read_stereo_camera(options.calib).resized_to(width, height);
+}
+
+}  // namespace
+
+void check_cloud_outputs(const CloudOutputOptions& options, int width, int height) {
+  if (options.wants_3d()) sized_camera(options, width, height);
 }
 
 void write_cloud_outputs(const CloudOutputOptions& options, const cv::Mat& disparity,
                          const cv::Mat& left_rgb, const cv::Mat& planes,
                          const cv::Mat& confidence) {
   if (!options.wants_3d()) return;
-  check_cloud_outputs(options, disparity.cols, disparity.rows);
   const auto start = std::chrono::steady_clock::now();
-  const StereoCamera camera =
-      read_stereo_camera(options.calib).resized_to(disparity.cols, disparity.rows);
+  const StereoCamera camera = sized_camera(options, disparity.cols, disparity.rows);
   if (!options.depth.empty()) {
     const double metres = options.depth_unit == "m" ? 1.0 : 1e-3;
     write_pfm(options.depth, depth_map(disparity, camera, metres));
