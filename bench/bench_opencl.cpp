@@ -270,6 +270,21 @@ void weighted_median_filled(benchmark::State& state) {
                     weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));
 }
 
+// The final median over every pixel, with the default window.
+void weighted_median_all(benchmark::State& state) {
+  const LevelCase c = case_of(state);
+  LevelFixture& f = fixture(c);
+  const testing_support::MedianInputs m = testing_support::median_inputs(f, c);
+  const int radius = StereoParams{}.final_median_window / 2;
+  const Buffer<float> disparity = guarded(m.disparity, "disparity");
+  const Buffer<float> weights = guarded(m.weights, "weights");
+  Buffer<float> filtered = guarded(std::vector<float>(m.disparity.size()), "filtered");
+  time_on_device(state, [&](OpenClStages& s) {
+    s.weighted_median_all(disparity, f.device_images[PMS_VIEW_LEFT], weights, radius, filtered);
+  });
+  set_work_counters(state, weighted_median_all_work(c.width, c.height, radius));
+}
+
 // ------------------------------------------------------------ the whole matcher
 
 // Built once: building the programs takes seconds. It selects the device the way the
@@ -323,6 +338,7 @@ void register_all() {
   register_kernel("left_right_check", left_right_check);
   register_kernel("fill_inconsistent", fill_inconsistent);
   register_kernel("weighted_median_filled", weighted_median_filled);
+  register_kernel("weighted_median_all", weighted_median_all);
   register_kernel("matcher_ppms",
                   [](benchmark::State& state) { whole_matcher(state, StereoMethod::PPMS); });
   register_kernel("matcher_pms",

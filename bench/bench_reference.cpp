@@ -203,6 +203,19 @@ void weighted_median_filled(benchmark::State& state) {
                     weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));
 }
 
+// The final median over every pixel, with the default window.
+void weighted_median_all(benchmark::State& state) {
+  const LevelCase c = case_of(state);
+  ReferenceLevel& f = fixture(c);
+  const testing_support::MedianInputs m = testing_support::median_inputs(f, c);
+  const int radius = StereoParams{}.final_median_window / 2;
+  time_on_host(state, [&] {
+    benchmark::DoNotOptimize(flexsight::weighted_median_all(
+        m.disparity, f.images[PMS_VIEW_LEFT], m.weights.data(), radius, reference_threads()));
+  });
+  set_work_counters(state, weighted_median_all_work(c.width, c.height, radius));
+}
+
 // ------------------------------------------------------------ the whole matcher
 
 void whole_matcher(benchmark::State& state, StereoMethod method) {
@@ -262,6 +275,7 @@ void register_all() {
   register_kernel("left_right_check", left_right_check);
   register_kernel("fill_inconsistent", fill_inconsistent);
   register_kernel("weighted_median_filled", weighted_median_filled);
+  register_kernel("weighted_median_all", weighted_median_all);
   register_kernel("matcher_ppms",
                   [](benchmark::State& state) { whole_matcher(state, StereoMethod::PPMS); });
   register_kernel("matcher_pms",

@@ -269,9 +269,22 @@ inline Work weighted_median_filled_work(int width, int height,
       }
       const double n = static_cast<double>(rows) * columns[x];
       const double steps = n > 1 ? std::ceil(std::log2(n)) : 0;
-      work.bytes += 20 * n;
+      work.bytes += 21 * n;  // the consistency flag, then colour and disparity
       work.flops += 8 * n + n * (1 + steps);
     }
+  }
+  return work;
+}
+
+// weighted_median_all: the same per-sample work at every pixel, step 1.
+inline Work weighted_median_all_work(int width, int height, int radius) {
+  const std::vector<std::uint8_t> none_consistent(static_cast<size_t>(width) * height, 0);
+  Work work = weighted_median_filled_work(width, height, none_consistent, radius, 1);
+  std::vector<int> columns(width);
+  for (int x = 0; x < width; ++x) columns[x] = window_offsets(width, radius, 1, x);
+  for (int y = 0; y < height; ++y) {
+    const int rows = window_offsets(height, radius, 1, y);
+    for (int x = 0; x < width; ++x) work.bytes -= static_cast<double>(rows) * columns[x];
   }
   return work;
 }

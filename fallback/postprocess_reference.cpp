@@ -35,10 +35,14 @@ std::vector<float> fill_inconsistent(const std::vector<float>& planes,
   return filled;
 }
 
-std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
-                                          const std::vector<std::uint8_t>& consistent,
-                                          const ViewImage& image, const float* weights,
-                                          int radius, int step, int threads) {
+namespace {
+
+// The weighted median at every pixel where `filter` is nonzero (every pixel when it is
+// null), voting the window pixels where `usable` is nonzero (all when null).
+std::vector<float> weighted_median(const std::vector<float>& disparity,
+                                   const std::uint8_t* filter, const std::uint8_t* usable,
+                                   const ViewImage& image, const float* weights, int radius,
+                                   int step, int threads) {
   const int width = image.width;
   const int height = image.height;
   std::vector<float> filtered(disparity);
@@ -52,10 +56,11 @@ std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         int index = y * width + x;
-        if (consistent[index]) continue;
-        int n = pms_gather_median_samples(disparity.data(), image.color.data(), weights, width,
-                                          height, x, y, radius, step, values.data(),
+        if (filter && !filter[index]) continue;
+        int n = pms_gather_median_samples(disparity.data(), usable, image.color.data(), weights,
+                                          width, height, x, y, radius, step, values.data(),
                                           sample_weights.data());
+        if (n == 0) continue;
         std::copy(values.begin(), values.begin() + n, sorted.begin());
         std::sort(sorted.begin(), sorted.begin() + n);
         filtered[index] = pms_weighted_median(values.data(), sample_weights.data(), sorted.data(), n);
@@ -63,6 +68,24 @@ std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
     }
   }
   return filtered;
+}
+
+}  // namespace
+
+std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
+                                          const std::vector<std::uint8_t>& consistent,
+                                          const ViewImage& image, const float* weights,
+                                          int radius, int step, int threads) {
+  std::vector<std::uint8_t> inconsistent(consistent.size());
+  for (size_t i = 0; i < consistent.size(); ++i) inconsistent[i] = !consistent[i];
+  return weighted_median(disparity, inconsistent.data(), consistent.data(), image, weights,
+                         radius, step, threads);
+}
+
+std::vector<float> weighted_median_all(const std::vector<float>& disparity,
+                                       const ViewImage& image, const float* weights, int radius,
+                                       int threads) {
+  return weighted_median(disparity, nullptr, nullptr, image, weights, radius, 1, threads);
 }
 
 }  // namespace flexsight

@@ -1,7 +1,8 @@
 #pragma once
 // Post-processing of the finest level (Bleyer et al. 2011, Sec. 3.3), scalar C++, one
 // function per kernel: left/right check, filling of inconsistent pixels with the
-// background plane, and a weighted median over the filled pixels only.
+// background plane, a weighted median over the filled pixels, and a small weighted median
+// over every pixel.
 #include <cstdint>
 #include <vector>
 
@@ -20,12 +21,18 @@ std::vector<float> fill_inconsistent(const std::vector<float>& planes,
                                      const std::vector<std::uint8_t>& consistent, int width,
                                      int height, int threads);
 
-// For every inconsistent pixel, the weighted median of the disparities in a window
-// (radius, step), weights from `weights` indexed by the colour difference to the
-// centre; consistent pixels are copied.
+// For every inconsistent pixel, the weighted median of the consistent pixels'
+// disparities in a window (radius, step), weights from `weights` indexed by the colour
+// difference to the centre; a window without consistent pixels keeps the filled value.
+// Consistent pixels are copied.
 std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
                                           const std::vector<std::uint8_t>& consistent,
                                           const ViewImage& image, const float* weights,
                                           int radius, int step, int threads);
+
+// The weighted median of every pixel's window (radius, step 1) over all disparities.
+std::vector<float> weighted_median_all(const std::vector<float>& disparity,
+                                       const ViewImage& image, const float* weights, int radius,
+                                       int threads);
 
 }  // namespace flexsight

@@ -43,6 +43,10 @@ void StereoParams::check() const {
   require(median_window >= 1 && median_window % 2 == 1 && median_window <= 101, "median-window",
           "must be odd and in 1..101");
   require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
+  require(final_median_window >= 1 && final_median_window % 2 == 1 && final_median_window <= 15,
+          "final-median-window", "must be odd and in 1..15 (1 = off)");
+  require(std::isfinite(final_median_gamma) && final_median_gamma > 0, "final-median-gamma",
+          "must be positive");
   require(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024 (0 = all cores)");
 }
 

@@ -52,6 +52,11 @@ struct StereoParams {
   // Weighted median filter window (odd) and colour bandwidth for filled pixels.
   int median_window = 35;
   float median_gamma = 10.0f;
+  // Then a weighted median over every pixel (window odd, 1 = off): it removes the
+  // isolated wrong planes PatchMatch leaves. A wide colour bandwidth, because at this
+  // size the window rarely straddles an edge that colour alone would reveal.
+  int final_median_window = 7;
+  float final_median_gamma = 40.0f;
   // Random generator key: same seed, same bytes.
   std::uint32_t seed = 1;
   // Worker threads for the reference path (0 = all cores). Never changes the result.

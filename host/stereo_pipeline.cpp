@@ -120,6 +120,11 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   std::vector<float> disparity = weighted_median_filled(
       plane_disparities(filled, threads), consistent, pyramid[PMS_VIEW_LEFT][0],
       median_weights.data(), params.median_window / 2, params.window_step, threads);
+  if (params.final_median_window > 1) {
+    const std::vector<float> final_weights = make_support_weight_table(params.final_median_gamma);
+    disparity = weighted_median_all(disparity, pyramid[PMS_VIEW_LEFT][0], final_weights.data(),
+                                    params.final_median_window / 2, threads);
+  }
   clamp_to_disparity_range(disparity, params);
   result.timings.push_back({"post-processing", seconds_since(start)});
 

@@ -99,6 +99,8 @@ inline std::vector<KernelDescription> kernel_descriptions() {
       {"left_right_check", false, false, kAll},
       {"fill_inconsistent", false, false, kAll},
       {"weighted_median_filled", false, true, kAll},
+      // Its window is the default final_median_window whatever the case.
+      {"weighted_median_all", false, false, kAll},
       {"matcher_ppms", false, false, kWhole},
       {"matcher_pms", false, false, kWhole},
   };

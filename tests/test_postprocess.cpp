@@ -91,6 +91,53 @@ TEST(WeightedMedian, FilterTouchesOnlyInconsistentPixels) {
   EXPECT_EQ(out[0], 31.0f);
 }
 
+TEST(WeightedMedian, OnlyConsistentPixelsVoteForAFilledPixel) {
+  // A 5x5 window around the centre: 20 inconsistent pixels say 30, the 5 consistent
+  // ones (the top row) say 4. Counting every vote the median would be 30.
+  const int w = 5, h = 5;
+  ViewImage image = make_view_image(cv::Mat(h, w, CV_8UC3, cv::Scalar(50, 50, 50)));
+  std::vector<float> disparity(w * h, 30.0f);
+  std::vector<std::uint8_t> ok(w * h, 0);
+  for (int x = 0; x < w; ++x) {
+    disparity[x] = 4.0f;
+    ok[x] = 1;
+  }
+  auto weights = make_support_weight_table(10.0f);
+  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 1);
+  EXPECT_EQ(out[2 * w + 2], 4.0f);
+  // The bottom-right corner's 3x3 window (radius 1) holds no consistent pixel: it keeps
+  // its filled value.
+  auto small = weighted_median_filled(disparity, ok, image, weights.data(), 1, 1, 1);
+  EXPECT_EQ(small[4 * w + 4], 30.0f);
+  EXPECT_EQ(small[1 * w + 1], 4.0f);  // its window reaches the top row: 3 votes of 4 ...
+  // ... against 6 of 30 would lose if the inconsistent pixels voted.
+  EXPECT_EQ(weighted_median_all(disparity, image, weights.data(), 1, 1)[1 * w + 1], 30.0f);
+}
+
+TEST(WeightedMedian, FilterOverAllPixelsRemovesAnIsolatedOutlierAndKeepsAnEdge) {
+  // Left half dark at disparity 10, right half bright at disparity 20, one consistent
+  // outlier (40) inside the left half.
+  const int w = 12, h = 9;
+  cv::Mat rgb(h, w, CV_8UC3, cv::Scalar(40, 40, 40));
+  rgb(cv::Rect(6, 0, 6, h)).setTo(cv::Scalar(200, 200, 200));
+  ViewImage image = make_view_image(rgb);
+  std::vector<float> disparity(w * h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) disparity[y * w + x] = x < 6 ? 10.0f : 20.0f;
+  }
+  disparity[4 * w + 3] = 40.0f;
+  auto weights = make_support_weight_table(40.0f);
+  auto out = weighted_median_all(disparity, image, weights.data(), 3, 1);
+  EXPECT_EQ(out[4 * w + 3], 10.0f);
+  // Next to the edge the window is half across it; the colour weights keep each side.
+  for (int y = 0; y < h; ++y) {
+    EXPECT_EQ(out[y * w + 5], 10.0f) << "row " << y;
+    EXPECT_EQ(out[y * w + 6], 20.0f) << "row " << y;
+  }
+  // Radius 0 is the identity.
+  EXPECT_EQ(weighted_median_all(disparity, image, weights.data(), 0, 1), disparity);
+}
+
 TEST(Confidence, IsOneOverOnePlusDisagreement) {
   std::vector<float> left = {0, 0, 3, 3};
   std::vector<float> right = {1, 0, 0, 0};

@@ -83,6 +83,10 @@ const std::vector<ParamOption>& param_options() {
       float_option("lr-tolerance", "left/right check tolerance (px)", &StereoParams::lr_tolerance),
       integer_option("median-window", "weighted median window (odd)", &StereoParams::median_window),
       float_option("median-gamma", "weighted median colour bandwidth", &StereoParams::median_gamma),
+      integer_option("final-median-window", "weighted median over all pixels (odd, 1 = off)",
+                     &StereoParams::final_median_window),
+      float_option("final-median-gamma", "its colour bandwidth",
+                   &StereoParams::final_median_gamma),
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
          long value = parse_integer("seed", v);

@@ -25,7 +25,7 @@ extern const KernelSource lr_confidence;
 extern const KernelSource upsample_nearest;
 extern const KernelSource left_right_check;
 extern const KernelSource fill_inconsistent;
-extern const KernelSource weighted_median_filled;
+extern const KernelSource weighted_median;
 }  // namespace kernel_sources
 
 }  // namespace flexsight::opencl

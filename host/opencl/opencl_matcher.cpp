@@ -233,7 +233,16 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
   stages.weighted_median_filled(filled_disparity, consistent, pyramid[PMS_VIEW_LEFT][0],
                                 median_weights, params.median_window / 2, params.window_step,
                                 filtered);
-  std::vector<float> disparity = filtered.read();
+  const Buffer<float>* final_disparity = &filtered;
+  if (params.final_median_window > 1) {
+    const Buffer<float> final_weights(
+        context, make_support_weight_table(params.final_median_gamma), "final median weights");
+    // The filled disparities are no longer needed: the second median writes over them.
+    stages.weighted_median_all(filtered, pyramid[PMS_VIEW_LEFT][0], final_weights,
+                               params.final_median_window / 2, filled_disparity);
+    final_disparity = &filled_disparity;
+  }
+  std::vector<float> disparity = final_disparity->read();
   clamp_to_disparity_range(disparity, params);
   const std::vector<float> raw_left = raw[PMS_VIEW_LEFT].read();
   const std::vector<float> raw_right = raw[PMS_VIEW_RIGHT].read();

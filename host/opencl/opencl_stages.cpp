@@ -218,21 +218,38 @@ void OpenClStages::weighted_median_filled(const Buffer<float>& disparity,
   require_size(weights, PMS_WEIGHT_TABLE_SIZE, "weighted_median_filled");
   require_size(filtered, pixels, "weighted_median_filled");
   if (radius < 0 || step < 1) throw std::invalid_argument("weighted_median_filled: bad window");
-  // The kernel's private sample arrays hold exactly one window (see the reference).
-  const int side = 2 * (radius / step) + 1;
-  const int samples = side * side;
-  auto found = weighted_median_.find(samples);
-  if (found == weighted_median_.end()) {
-    found = weighted_median_
-                .emplace(samples, make_kernel(src::weighted_median_filled, "weighted_median_filled",
-                                              "-DPMS_MEDIAN_MAX_SAMPLES=" +
-                                                  std::to_string(samples)))
-                .first;
-  }
-  Kernel& kernel = found->second;
+  Kernel& kernel = median_kernel("weighted_median_filled", 2 * (radius / step) + 1);
   kernel.set_args(disparity, consistent, image.color, weights, image.width, image.height, radius,
                   step, filtered);
   launch(kernel, image.width, image.height);
+}
+
+void OpenClStages::weighted_median_all(const Buffer<float>& disparity, const DeviceView& image,
+                                       const Buffer<float>& weights, int radius,
+                                       Buffer<float>& filtered) {
+  const long long pixels = image.pixels();
+  require_size(disparity, pixels, "weighted_median_all");
+  require_size(image.color, 4 * pixels, "weighted_median_all");
+  require_size(weights, PMS_WEIGHT_TABLE_SIZE, "weighted_median_all");
+  require_size(filtered, pixels, "weighted_median_all");
+  if (radius < 0) throw std::invalid_argument("weighted_median_all: bad window");
+  Kernel& kernel = median_kernel("weighted_median_all", 2 * radius + 1);
+  kernel.set_args(disparity, image.color, weights, image.width, image.height, radius, filtered);
+  launch(kernel, image.width, image.height);
+}
+
+Kernel& OpenClStages::median_kernel(const std::string& name, int side) {
+  // The kernel's private sample arrays hold exactly one window (see the reference).
+  const int samples = side * side;
+  const auto key = std::make_pair(name, samples);
+  auto found = weighted_median_.find(key);
+  if (found == weighted_median_.end()) {
+    found = weighted_median_
+                .emplace(key, make_kernel(src::weighted_median, name.c_str(),
+                                          "-DPMS_MEDIAN_MAX_SAMPLES=" + std::to_string(samples)))
+                .first;
+  }
+  return found->second;
 }
 
 }  // namespace flexsight::opencl

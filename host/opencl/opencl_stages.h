@@ -6,6 +6,8 @@
 // stage; nothing past them is written.
 #include <cstdint>
 #include <map>
+#include <string>
+#include <utility>
 
 #include "host/opencl/device_level.h"
 #include "host/opencl/kernel_profiler.h"
@@ -51,6 +53,8 @@ class OpenClStages {
                               const Buffer<std::uint8_t>& consistent, const DeviceView& image,
                               const Buffer<float>& weights, int radius, int step,
                               Buffer<float>& filtered);
+  void weighted_median_all(const Buffer<float>& disparity, const DeviceView& image,
+                           const Buffer<float>& weights, int radius, Buffer<float>& filtered);
 
  private:
   Kernel make_kernel(const KernelSource& source, const char* name,
@@ -61,6 +65,8 @@ class OpenClStages {
   void launch(Kernel& kernel, size_t width, size_t height);
   void launch_checkerboard(Kernel& kernel, int width, int height);
   void launch_dense_lanes(Kernel& kernel, int width, int height);
+  // A kernel of weighted_median.cl whose windows have side x side samples.
+  Kernel& median_kernel(const std::string& name, int side);
 
   Context& context_;
   KernelProfiler* profiler_;
@@ -68,8 +74,8 @@ class OpenClStages {
       propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,
       fill_inconsistent_;
-  // weighted_median_filled, built per PMS_MEDIAN_MAX_SAMPLES (window samples).
-  std::map<int, Kernel> weighted_median_;
+  // The kernels of weighted_median.cl by name and PMS_MEDIAN_MAX_SAMPLES (window samples).
+  std::map<std::pair<std::string, int>, Kernel> weighted_median_;
 };
 
 }  // namespace flexsight::opencl

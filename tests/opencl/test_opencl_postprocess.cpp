@@ -50,6 +50,21 @@ TEST_P(PostProcessStage, WeightedMedianFilled) {
   EXPECT_TRUE(same_buffer(expected, filtered));
 }
 
+TEST_P(PostProcessStage, WeightedMedianAll) {
+  const LevelCase c = GetParam();
+  LevelFixture f(c);
+  const MedianInputs m = median_inputs(f, c);
+  for (int radius : {0, 1, 3}) {
+    const std::vector<float> expected =
+        weighted_median_all(m.disparity, f.images[PMS_VIEW_LEFT], m.weights.data(), radius, 2);
+    Buffer<float> filtered = guarded_output<float>(expected.size(), "filtered");
+    stages().weighted_median_all(guarded(m.disparity, "disparity"),
+                                 f.device_images[PMS_VIEW_LEFT], guarded(m.weights, "weights"),
+                                 radius, filtered);
+    EXPECT_TRUE(same_buffer(expected, filtered)) << "radius " << radius;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, PostProcessStage, ::testing::ValuesIn(level_cases()),
                          level_case_name);
 
