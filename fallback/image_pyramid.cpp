@@ -34,6 +34,8 @@ void compute_gradient(ViewImage& image) {
     for (int x = 0; x < image.width; ++x) {
       pms_gradient_pixel(image.color.data(), image.width, image.height, x, y,
                          &image.gradient[2 * (static_cast<size_t>(y) * image.width + x)]);
+      image.color[4 * (static_cast<size_t>(y) * image.width + x) + 3] =
+          pms_census_pixel(image.color.data(), image.width, image.height, x, y);
     }
   }
 }

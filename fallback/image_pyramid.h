@@ -9,22 +9,23 @@ namespace flexsight {
 struct ViewImage {
   int width = 0;
   int height = 0;
-  std::vector<float> color;     // r, g, b, 0 per pixel
+  std::vector<float> color;     // r, g, b, census per pixel (pms_census_pixel)
   std::vector<float> gradient;  // gx, gy per pixel
   int pixels() const { return width * height; }
 };
 
-// From CV_8UC3 (RGB), gradient included.
+// From CV_8UC3 (RGB), gradient and census included.
 ViewImage make_view_image(const cv::Mat& rgb8);
 
 // The `color` of make_view_image (r, g, b, 0 per pixel) alone, for the OpenCL path,
 // which computes the gradient on the device.
 std::vector<float> view_color(const cv::Mat& rgb8);
 
-// Coarser level: 2x2 box average with rounding (size rounds up), gradient included.
+// Coarser level: 2x2 box average with rounding (size rounds up), gradient and census
+// included.
 ViewImage downsample(const ViewImage& fine);
 
-// Recomputes `image.gradient` from `image.color`.
+// Recomputes `image.gradient` and the census in `image.color` from its r, g, b.
 void compute_gradient(ViewImage& image);
 
 // Number of pyramid levels so that the coarsest is at most `coarsest_width` wide

@@ -24,6 +24,7 @@ void StereoParams::check() const {
   require(std::isfinite(tau_color) && tau_color > 0, "tau-color", "must be positive");
   require(std::isfinite(tau_gradient) && tau_gradient > 0, "tau-gradient", "must be positive");
   require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
+  require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
   require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
   require(iterations_fine >= 0 && iterations_fine <= 100, "iterations-fine",
           "must be in 0..100");

@@ -23,6 +23,12 @@ struct StereoParams {
   // Truncation of the colour (L1 over RGB) and gradient dissimilarities.
   float tau_color = 10.0f;
   float tau_gradient = 2.0f;
+  // Weight of a 5x5 census Hamming distance (0..24 bits) added to each window pixel's
+  // dissimilarity (kernels/pms_math.h). The census only sees which neighbours are darker,
+  // so it survives the exposure and lighting changes between the two cameras (MiddEval3's
+  // PianoL, MotorcycleE) and the faint texture of walls that colour differences truncated
+  // at tau_color drown in. An addition to Bleyer et al.'s cost; 0 gives theirs exactly.
+  float census_weight = 4.0f;
   // Adaptive support weight exp(-|I_p - I_q|_1 / gamma).
   float gamma = 10.0f;
   // PatchMatch iterations (each: both views, both checkerboard colours) per level.

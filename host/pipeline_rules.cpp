@@ -52,7 +52,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.coarsest = level == levels - 1;
   plan.ndisp = level_ndisp(params.ndisp, level);
   plan.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
-               params.tau_color, params.tau_gradient};
+               params.tau_color, params.tau_gradient, params.census_weight};
   plan.iterations = plan.coarsest ? params.iterations : params.iterations_fine;
 
   // Half the level's disparity range at first; below the coarsest level the carried

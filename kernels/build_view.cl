@@ -11,10 +11,12 @@ __kernel void downsample_color(const __global float* fine, int fine_width, int f
   pms_downsample_pixel(fine, fine_width, fine_height, x, y, coarse + 4 * (y * coarse_width + x));
 }
 
-/* Grey-value gradient (gx, gy) of pixel (x, y). */
-__kernel void compute_gradient(const __global float* color, int width, int height,
+/* Grey-value gradient (gx, gy) of pixel (x, y), and its census in the colour's fourth
+ * component (the neighbours' colours are read from components 0..2 only). */
+__kernel void compute_gradient(__global float* color, int width, int height,
                                __global float* gradient) {
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
   pms_gradient_pixel(color, width, height, x, y, gradient + 2 * (y * width + x));
+  color[4 * (y * width + x) + 3] = pms_census_pixel(color, width, height, x, y);
 }

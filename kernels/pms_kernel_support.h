@@ -136,18 +136,21 @@ typedef int4 pms_intv;
 #define PMS_VLOAD vload4
 #define PMS_TO_FLOATV convert_float4
 #define PMS_TO_INTV convert_int4
+#define PMS_TO_UINTV convert_uint4
 #elif PMS_LANES == 8
 typedef float8 pms_floatv;
 typedef int8 pms_intv;
 #define PMS_VLOAD vload8
 #define PMS_TO_FLOATV convert_float8
 #define PMS_TO_INTV convert_int8
+#define PMS_TO_UINTV convert_uint8
 #elif PMS_LANES == 16
 typedef float16 pms_floatv;
 typedef int16 pms_intv;
 #define PMS_VLOAD vload16
 #define PMS_TO_FLOATV convert_float16
 #define PMS_TO_INTV convert_int16
+#define PMS_TO_UINTV convert_uint16
 #else
 #error "PMS_LANES must be 4, 8 or 16"
 #endif
@@ -214,6 +217,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
   const float alpha = in->params.alpha;
   const float tau_color = in->params.tau_color;
   const float tau_gradient = in->params.tau_gradient;
+  const float census_weight = in->params.census_weight;
   const __global float* restrict weights = in->weights;
   const pms_floatv a = PMS_VLOAD(0, a_in);
   const pms_floatv b = PMS_VLOAD(0, b_in);
@@ -271,7 +275,8 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
       float m10[PMS_LANES], m11[PMS_LANES], m12[PMS_LANES];
       float g00[PMS_LANES], g01[PMS_LANES], g10[PMS_LANES], g11[PMS_LANES];
       float w[PMS_LANES];
-      pms_floatv Q0, Q1, Q2, G0, G1, W;
+      float q3[PMS_LANES], mn3[PMS_LANES];
+      pms_floatv Q0, Q1, Q2, Q3, MN3, G0, G1, W;
       pms_floatv M00, M01, M02, M10, M11, M12, G00, G01, G10, G11;
 #if PMS_LANES == 8
       if (fast) {
@@ -284,6 +289,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         Q0 = (float8)(c0.s0, c0.s8, c1.s0, c1.s8, c2.s0, c2.s8, c3.s0, c4.s0);
         Q1 = (float8)(c0.s1, c0.s9, c1.s1, c1.s9, c2.s1, c2.s9, c3.s1, c4.s1);
         Q2 = (float8)(c0.s2, c0.sa, c1.s2, c1.sa, c2.s2, c2.sa, c3.s2, c4.s2);
+        Q3 = (float8)(c0.s3, c0.sb, c1.s3, c1.sb, c2.s3, c2.sb, c3.s3, c4.s3);
         const __global float* qg = ref_grad_row + 2 * first_qx;
         const float16 h0 = vload16(0, qg);
         const float8 h1 = vload8(2, qg);
@@ -308,6 +314,8 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         G01 = PMS_GATHER8(other_grad_row + 1, g0i);
         G10 = PMS_GATHER8(other_grad_row, g1i);
         G11 = PMS_GATHER8(other_grad_row + 1, g1i);
+        const int8 cni = select(c0i, c1i, isless(t, 0.5f) == 0);
+        MN3 = PMS_GATHER8(other_row + 3, cni);
       } else
 #endif
       {
@@ -326,6 +334,8 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         q0[l] = q[0];
         q1[l] = q[1];
         q2[l] = q[2];
+        q3[l] = q[3];
+        mn3[l] = t[l] < 0.5f ? m0[3] : m1[3];
         gq0[l] = g[0];
         gq1[l] = g[1];
         m00[l] = m0[0];
@@ -345,6 +355,8 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
       Q0 = PMS_VLOAD(0, q0);
       Q1 = PMS_VLOAD(0, q1);
       Q2 = PMS_VLOAD(0, q2);
+      Q3 = PMS_VLOAD(0, q3);
+      MN3 = PMS_VLOAD(0, mn3);
       G0 = PMS_VLOAD(0, gq0);
       G1 = PMS_VLOAD(0, gq1);
       W = PMS_VLOAD(0, w);
@@ -364,8 +376,11 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
                                     fabs(Q2 - (M02 + t * (M12 - M02)));
       const pms_floatv grad_diff =
           fabs(G0 - (G00 + t * (G10 - G00))) + fabs(G1 - (G01 + t * (G11 - G01)));
+      const pms_floatv census =
+          PMS_TO_FLOATV(popcount(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(MN3)));
       const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
-                                       alpha * fmin(grad_diff, tau_gradient);
+                                       alpha * fmin(grad_diff, tau_gradient) +
+                                       census_weight * census;
       sum = select(sum, sum + W * dissimilarity, inside);
     }
     if (all(sum >= bound)) return sum;

@@ -7,14 +7,14 @@
  *  - plain float arithmetic written in the order it must be evaluated; both compilers
  *    run with contraction off (-ffp-contract=off, #pragma OPENCL FP_CONTRACT OFF), so
  *    a*b+c is always a rounded product then a rounded sum;
- *  - the only library maths are floor, fabs, fmin/fmax and sqrt / division, which are
- *    exact or correctly rounded (OpenCL needs -cl-fp32-correctly-rounded-divide-sqrt);
+ *  - the only library maths are floor, fabs, fmin/fmax, popcount and sqrt / division,
+ *    which are exact or correctly rounded (OpenCL needs -cl-fp32-correctly-rounded-divide-sqrt);
  *    exp() is replaced by a table built once on the host (fallback/weight_table.h);
  *  - random numbers come from a counter-based hash of (seed, view, pixel, iteration,
  *    trial), so no state is shared between pixels and thread order cannot matter.
  *
- * Buffers are flat float arrays: colour 4 floats per pixel (r, g, b, unused; integer
- * values 0..255), gradient 2 floats per pixel (gx, gy), planes 4 floats per pixel
+ * Buffers are flat float arrays: colour 4 floats per pixel (r, g, b: integer values
+ * 0..255; then the pixel's 24-bit census as an exact float integer), gradient 2 floats per pixel (gx, gy), planes 4 floats per pixel
  * (a, b, c, unused) meaning disparity d(x, y) = a*x + b*y + c in that view's pixels.
  */
 #ifndef FLEXSIGHT_PMS_MATH_H
@@ -30,6 +30,7 @@ typedef uint pms_u32;
 #define PMS_FMIN(x, y) fmin(x, y)
 #define PMS_FMAX(x, y) fmax(x, y)
 #define PMS_SQRT(x) sqrt(x)
+#define PMS_POPCOUNT(x) popcount(x)
 #else
 #include <cmath>
 #include <cstdint>
@@ -41,6 +42,7 @@ typedef std::uint32_t pms_u32;
 #define PMS_FMIN(x, y) std::fmin(x, y)
 #define PMS_FMAX(x, y) std::fmax(x, y)
 #define PMS_SQRT(x) std::sqrt(x)
+#define PMS_POPCOUNT(x) __builtin_popcount(x)
 #endif
 
 /* Number of entries of the support-weight table: the L1 distance of two RGB8 colours
@@ -70,6 +72,7 @@ typedef struct {
   float one_minus_alpha; /* computed once on the host so both paths use one value */
   float tau_color;
   float tau_gradient;
+  float census_weight;   /* weight of the census Hamming distance (0..24) */
 } PmsCostParams;
 
 /* ---------------------------------------------------------------- random numbers */
@@ -233,11 +236,14 @@ PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, i
 
 /*
  * Adaptive-support-weighted matching cost of plane (a, b, c) at pixel (px, py) of the
- * reference view against the other view (Bleyer et al. 2011, eq. 2-4):
+ * reference view against the other view (Bleyer et al. 2011, eq. 2-4, plus a census term):
  *   sum over window pixels q of  w(p, q) * [ (1 - alpha) min(|I_q - I'_q'|_1, tau_col)
- *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad) ]
+ *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad)
+ *                                           + census_weight * H(census_q, census'_q'') ]
  * with w(p, q) = weights[|I_p - I_q|_1] = exp(-|I_p - I_q|_1 / gamma), q' = q -+ d(q)
- * (direction -1 for the left view, +1 for the right), and I' linearly interpolated.
+ * (direction -1 for the left view, +1 for the right), I' linearly interpolated, H the
+ * Hamming distance of 5x5 census bit strings (pms_census_pixel) and q'' the pixel nearest
+ * to q' (a bit string does not interpolate).
  * Window pixels outside the image are left out; the set depends only on p, so every
  * candidate plane of p is summed over the same pixels. Matching positions outside the
  * other image are clamped to its border.
@@ -284,8 +290,11 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
       const PMS_GLOBAL float* g1 = other_grad_row + 2 * x1;
       float grad_diff = PMS_FABS(g[0] - (g0[0] + t * (g1[0] - g0[0]))) +
                         PMS_FABS(g[1] - (g0[1] + t * (g1[1] - g0[1])));
+      const PMS_GLOBAL float* mn = t < 0.5f ? m0 : m1;
+      float census = (float)PMS_POPCOUNT((pms_u32)q[3] ^ (pms_u32)mn[3]);
       float dissimilarity = params.one_minus_alpha * PMS_FMIN(color_diff, params.tau_color) +
-                            params.alpha * PMS_FMIN(grad_diff, params.tau_gradient);
+                            params.alpha * PMS_FMIN(grad_diff, params.tau_gradient) +
+                            params.census_weight * census;
       sum = sum + weights[pms_color_l1(centre, q)] * dissimilarity;
     }
     if (sum >= bound) return sum;
@@ -335,6 +344,26 @@ PMS_INLINE void pms_downsample_pixel(const PMS_GLOBAL float* fine, int fine_widt
 /* Grey value scaled by 3 (r + g + b), exact in float. */
 PMS_INLINE float pms_grey3(const PMS_GLOBAL float* color, int index) {
   return color[4 * index] + color[4 * index + 1] + color[4 * index + 2];
+}
+
+/* 5x5 census of the grey value r + g + b: bit k is set when the k-th neighbour (row
+ * by row, centre left out, coordinates clamped at the border) is darker than the centre.
+ * 24 bits, exact as a float; it goes in the colour's fourth component. */
+PMS_INLINE float pms_census_pixel(const PMS_GLOBAL float* color, int width, int height, int x,
+                                  int y) {
+  float centre = pms_grey3(color, y * width + x);
+  pms_u32 bits = 0U;
+  pms_u32 bit = 1U;
+  for (int dy = -2; dy <= 2; ++dy) {
+    int qy = y + dy < 0 ? 0 : (y + dy > height - 1 ? height - 1 : y + dy);
+    for (int dx = -2; dx <= 2; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      int qx = x + dx < 0 ? 0 : (x + dx > width - 1 ? width - 1 : x + dx);
+      if (pms_grey3(color, qy * width + qx) < centre) bits |= bit;
+      bit <<= 1;
+    }
+  }
+  return (float)bits;
 }
 
 /* Central-difference gradient of the grey value (r + g + b) / 3, border pixels use a

@@ -28,12 +28,16 @@ struct LevelCase {
   int step;
   int ndisp;
   std::uint32_t seed;
+  float census_weight = 0.0f;
 };
 
 inline std::string case_name(const LevelCase& c) {
   return std::to_string(c.width) + "x" + std::to_string(c.height) + "_w" +
          std::to_string(c.window) + "s" + std::to_string(c.step) + "_n" +
-         std::to_string(c.ndisp) + "_seed" + std::to_string(c.seed);
+         std::to_string(c.ndisp) + "_seed" + std::to_string(c.seed) +
+         (c.census_weight > 0
+              ? "_census" + std::to_string(static_cast<int>(c.census_weight * 100))
+              : "");
 }
 // GoogleTest prints parameters in test names and messages; bytes would vary by build.
 inline void PrintTo(const LevelCase& c, std::ostream* out) { *out << case_name(c); }
@@ -43,7 +47,8 @@ inline void PrintTo(const LevelCase& c, std::ostream* out) { *out << case_name(c
 inline std::vector<LevelCase> level_cases() {
   return {{1, 1, 5, 1, 2, 1},      {7, 5, 5, 2, 4, 2},     {7, 5, 11, 1, 7, 3},
           {33, 17, 11, 2, 16, 4},  {33, 17, 35, 3, 9, 5},  {131, 93, 35, 2, 32, 6},
-          {131, 93, 11, 1, 64, 7}, {64, 9, 9, 2, 24, 8}};
+          {131, 93, 11, 1, 64, 7}, {64, 9, 9, 2, 24, 8},  {7, 5, 5, 2, 4, 9, 0.1f},
+          {33, 17, 11, 2, 16, 10, 0.05f}, {131, 93, 35, 2, 32, 11, 0.1f}};
 }
 
 // ------------------------------------------------------------ the benchmark grid
@@ -158,7 +163,7 @@ struct ReferenceLevel {
     images[PMS_VIEW_RIGHT] = make_view_image(pair.right);
     for (int view = 0; view < 2; ++view) in.views[view] = &images[view];
     in.weights = weights.data();
-    in.cost = {c.window / 2, c.step, 0.9f, 1.0f - 0.9f, 10.0f, 2.0f};
+    in.cost = {c.window / 2, c.step, 0.9f, 1.0f - 0.9f, 10.0f, 2.0f, c.census_weight};
     in.ndisp = c.ndisp;
     in.seed = c.seed;
     in.threads = threads;

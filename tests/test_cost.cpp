@@ -2,7 +2,10 @@
 // an independent double-precision implementation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bitset>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "fallback/image_pyramid.h"
@@ -21,8 +24,9 @@ ViewImage grey_row(std::initializer_list<float> values) {
   return make_view_image(rgb);
 }
 
-PmsCostParams params(int radius, int step, float tau_color, float tau_gradient) {
-  return {radius, step, 0.9f, 1.0f - 0.9f, tau_color, tau_gradient};
+PmsCostParams params(int radius, int step, float tau_color, float tau_gradient,
+                     float census_weight = 0.0f) {
+  return {radius, step, 0.9f, 1.0f - 0.9f, tau_color, tau_gradient, census_weight};
 }
 
 float cost(const ViewImage& ref, const ViewImage& other, const std::vector<float>& weights,
@@ -31,6 +35,27 @@ float cost(const ViewImage& ref, const ViewImage& other, const std::vector<float
   return pms_plane_cost(ref.color.data(), ref.gradient.data(), other.color.data(),
                         other.gradient.data(), weights.data(), ref.width, ref.height, p, x, y, a,
                         b, c, direction, bound);
+}
+
+// The 5x5 census of grey r + g + b at (x, y), written from its definition: bit k for
+// the k-th neighbour in row order (centre skipped), set when darker, clamped borders.
+std::uint32_t census_of(const ViewImage& v, int x, int y) {
+  auto grey = [&](int qx, int qy) {
+    qx = std::clamp(qx, 0, v.width - 1);
+    qy = std::clamp(qy, 0, v.height - 1);
+    const float* c = &v.color[4 * (qy * v.width + qx)];
+    return c[0] + c[1] + c[2];
+  };
+  std::uint32_t bits = 0;
+  int k = 0;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      if (grey(x + dx, y + dy) < grey(x, y)) bits |= 1u << k;
+      ++k;
+    }
+  }
+  return bits;
 }
 
 // Independent implementation in double precision, with explicit loops over the whole
@@ -63,8 +88,12 @@ double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma
                    t * other.gradient[2 * (qy * ref.width + x1) + ch];
         grad += std::fabs(ref.gradient[2 * (qy * ref.width + qx) + ch] - m);
       }
+      const int nearest = t < 0.5 ? x0 : x1;
+      const double census =
+          std::bitset<32>(census_of(ref, qx, qy) ^ census_of(other, nearest, qy)).count();
       sum += weight * (0.1 * std::min(color, static_cast<double>(p.tau_color)) +
-                       0.9 * std::min(grad, static_cast<double>(p.tau_gradient)));
+                       0.9 * std::min(grad, static_cast<double>(p.tau_gradient)) +
+                       p.census_weight * census);
     }
   }
   return sum;
@@ -111,6 +140,35 @@ TEST(MatchingCost, ZeroForTheTrueShift) {
   EXPECT_EQ(cost(right, left, weights, params(3, 1, 10, 2), 12, 6, 0, 0, 3.0f, 1.0f), 0.0f);
 }
 
+TEST(Census, StoredInTheFourthColourComponentAsItsDefinitionSays) {
+  const int w = 9, h = 7;
+  ViewImage v = make_view_image(testing_support::random_rgb8(w, h, 7));
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      EXPECT_EQ(static_cast<std::uint32_t>(v.color[4 * (y * w + x) + 3]), census_of(v, x, y))
+          << x << "," << y;
+    }
+  }
+}
+
+TEST(MatchingCost, CensusTermIsTheWeightedHammingDistance) {
+  // One row: the uniform left image has census 0 everywhere. Right pixel 1 (90) between
+  // two 50s: with rows and columns clamped, each of the 5 window rows reads the pixels
+  // 0, 0, 1, 2, 2, four of them darker (the centre row skips the centre itself), so its
+  // census has 20 bits set. A 1x1 window at left pixel 1 with d = 0 compares it with
+  // census 0: the census term adds 0.5 * 20.
+  ViewImage left = grey_row({50, 50, 50});
+  ViewImage right = grey_row({50, 90, 50});
+  ASSERT_EQ(census_of(left, 1, 0), 0u);
+  ASSERT_EQ(std::bitset<32>(census_of(right, 1, 0)).count(), 20u);
+  auto weights = make_support_weight_table(10.0f);
+  const float with_census =
+      cost(left, right, weights, params(0, 1, 100, 100, 0.5f), 1, 0, 0, 0, 0.0f, -1.0f);
+  const float without =
+      cost(left, right, weights, params(0, 1, 100, 100), 1, 0, 0, 0, 0.0f, -1.0f);
+  EXPECT_NEAR(with_census - without, 10.0, 1e-4);
+}
+
 TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
   const int w = 23, h = 17;
   ViewImage left = make_view_image(testing_support::random_rgb8(w, h, 1));
@@ -118,7 +176,7 @@ TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
   auto weights = make_support_weight_table(10.0f);
   for (int step : {1, 2, 3}) {
     for (int radius : {1, 4, 7}) {
-      PmsCostParams p = params(radius, step, 10.0f, 2.0f);
+      PmsCostParams p = params(radius, step, 10.0f, 2.0f, step == 2 ? 0.0f : 0.75f);
       for (int y : {0, 3, h - 1}) {
         for (int x : {0, 1, 11, w - 2, w - 1}) {
           for (float direction : {-1.0f, 1.0f}) {

@@ -67,6 +67,8 @@ const std::vector<ParamOption>& param_options() {
       float_option("tau-color", "colour truncation", &StereoParams::tau_color),
       float_option("tau-gradient", "gradient truncation", &StereoParams::tau_gradient),
       float_option("gamma", "support weight bandwidth", &StereoParams::gamma),
+      float_option("census-weight", "weight of the 5x5 census distance (0 = off)",
+                   &StereoParams::census_weight),
       integer_option("iterations", "iterations on the coarsest (or only) level", &StereoParams::iterations),
       integer_option("iterations-fine", "iterations on finer PPMS levels", &StereoParams::iterations_fine),
       float_option("min-search-range", "smallest random-search range (px)", &StereoParams::min_search_range),
