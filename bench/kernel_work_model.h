@@ -13,9 +13,10 @@
 //     17  colour: 3 channels x (m1-m0, t*, m0+, q-, fabs) + 2 adds
 //     11  gradient: 2 channels x 5 + 1 add
 //      5  dissimilarity: 2 fmin, 2 mul, 1 add
+//      4  census: nearest pixel (1 compare), xor, popcount, mul and add to the rest
 //      8  weight index pms_color_l1(centre, q): 3 sub, 3 fabs, 2 add
 //      2  sum = sum + w * dissimilarity
-//     52  in all (row_term, 1 mul per window row, is left out)
+//     56  in all (row_term, 1 mul per window row, is left out)
 //   bytes the loads request (what the load units move, mostly from cache: the
 //   working set of a row of windows fits in L2, so this is not DRAM traffic)
 //     12  q: colour r, g, b of the window pixel
@@ -23,7 +24,8 @@
 //      8  g: gradient of the window pixel
 //     16  g0, g1: the other view's gradient at x0 and x1
 //      4  the support weight
-//     64  in all
+//      8  the census of the window pixel and of the nearest matched pixel
+//     72  in all
 // Samples per window: offsets k*step in [-radius, radius] (the grid goes through 0),
 // so 2*(radius/step) + 1 per side, (2*(radius/step) + 1)^2 for an inner pixel (289 at
 // window 35 step 2, 121 at window 21), fewer near the border where window pixels
@@ -55,8 +57,8 @@
 
 namespace flexsight::bench {
 
-constexpr double kCostFlopsPerSample = 52;
-constexpr double kCostBytesPerSample = 64;
+constexpr double kCostFlopsPerSample = 56;
+constexpr double kCostBytesPerSample = 72;
 
 // What one call of a stage processes.
 struct Work {

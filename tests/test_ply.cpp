@@ -80,7 +80,9 @@ TEST_P(Ply, BinaryLayoutIsHeaderThenPackedLittleEndianVertices) {
       EXPECT_EQ(float_le(bytes, v + 12 + 4 * k), cloud.normals[i][k]);
       EXPECT_EQ(std::uint8_t(bytes[v + 24 + k]), cloud.colors[i][k]);
     }
-    if (with_confidence) EXPECT_EQ(float_le(bytes, v + 27), cloud.confidence[i]);
+    if (with_confidence) {
+      EXPECT_EQ(float_le(bytes, v + 27), cloud.confidence[i]);
+    }
   }
 }
 
@@ -92,7 +94,9 @@ TEST_P(Ply, AsciiRoundTripsEveryFloatExactly) {
   std::istringstream in(slurp(path));
   std::string line;
   while (std::getline(in, line) && line != "end_header") {
-    if (line.rfind("format", 0) == 0) EXPECT_EQ(line, "format ascii 1.0");
+    if (line.rfind("format", 0) == 0) {
+      EXPECT_EQ(line, "format ascii 1.0");
+    }
   }
   for (size_t i = 0; i < 3; ++i) {
     ASSERT_TRUE(std::getline(in, line));
