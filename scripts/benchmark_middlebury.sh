@@ -29,4 +29,5 @@ scripts/make_montage.py "$data" "$out/montage-hard.jpg" Adirondack,PianoL,Shelve
   PPMS="$out/ppms-reference"
 # The per-scene files were needed for the comparison and the montages; the reports and
 # montages are what is kept (the per-scene pictures would add 20 MB to the repository).
-rm -f "$out"/*/*.pfm "$out"/*/*.png
+# Only this script's run folders: docs/benchmark/report/ keeps its plot.
+rm -f "$out"/{ppms-reference,pms-reference,ppms-opencl}/*.{pfm,png}
