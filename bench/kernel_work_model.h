@@ -254,9 +254,11 @@ inline Work fill_inconsistent_work(int width, int height,
 // the n weights once and once per binary-search step (ceil(log2 n) steps): n (1 + steps)
 // adds. The insertion sort's comparisons (O(n^2)) are not arithmetic and are left out,
 // so this kernel's GFLOP/s stays low whatever its speed.
-inline Work weighted_median_filled_work(int width, int height,
-                                        const std::vector<std::uint8_t>& consistent,
-                                        int radius, int step) {
+// A weighted median over the pixels where `consistent` is 0 (every pixel when it is
+// null): per sample `bytes_per_sample` of loads, 8 flops of weight index and the
+// binary search's passes; a skipped pixel copies its disparity.
+inline Work weighted_median_work(int width, int height, const std::uint8_t* consistent,
+                                 int radius, int step, double bytes_per_sample) {
   std::vector<int> columns(width);
   for (int x = 0; x < width; ++x) columns[x] = window_offsets(width, radius, step, x);
   Work work;
@@ -265,30 +267,29 @@ inline Work weighted_median_filled_work(int width, int height,
     const int rows = window_offsets(height, radius, step, y);
     for (int x = 0; x < width; ++x) {
       work.bytes += 1 + 4;
-      if (consistent[static_cast<size_t>(y) * width + x]) {
+      if (consistent && consistent[static_cast<size_t>(y) * width + x]) {
         work.bytes += 4;
         continue;
       }
       const double n = static_cast<double>(rows) * columns[x];
       const double steps = n > 1 ? std::ceil(std::log2(n)) : 0;
-      work.bytes += 21 * n;  // the consistency flag, then colour and disparity
+      work.bytes += bytes_per_sample * n;
       work.flops += 8 * n + n * (1 + steps);
     }
   }
   return work;
 }
 
-// weighted_median_all: the same per-sample work at every pixel, step 1.
+// weighted_median_filled: the consistency flag, colour and disparity of each sample.
+inline Work weighted_median_filled_work(int width, int height,
+                                        const std::vector<std::uint8_t>& consistent,
+                                        int radius, int step) {
+  return weighted_median_work(width, height, consistent.data(), radius, step, 21);
+}
+
+// weighted_median_all: every pixel, step 1, colour and disparity of each sample.
 inline Work weighted_median_all_work(int width, int height, int radius) {
-  const std::vector<std::uint8_t> none_consistent(static_cast<size_t>(width) * height, 0);
-  Work work = weighted_median_filled_work(width, height, none_consistent, radius, 1);
-  std::vector<int> columns(width);
-  for (int x = 0; x < width; ++x) columns[x] = window_offsets(width, radius, 1, x);
-  for (int y = 0; y < height; ++y) {
-    const int rows = window_offsets(height, radius, 1, y);
-    for (int x = 0; x < width; ++x) work.bytes -= static_cast<double>(rows) * columns[x];
-  }
-  return work;
+  return weighted_median_work(width, height, nullptr, radius, 1, 20);
 }
 
 // The PatchMatch stages of a whole run of the matcher (run_stereo's stage list with
