@@ -236,7 +236,7 @@ void left_right_check(benchmark::State& state) {
   Buffer<std::uint8_t> consistent =
       guarded(std::vector<std::uint8_t>(pair.left.size()), "consistent");
   time_on_device(state, [&](OpenClStages& s) {
-    s.left_right_check(left, right, c.width, c.height, kLrTolerance, consistent);
+    s.left_right_check(left, right, c.width, c.height, PMS_VIEW_LEFT, kLrTolerance, consistent);
   });
   set_work_counters(state, left_right_check_work(c.width, c.height));
 }
@@ -264,7 +264,7 @@ void weighted_median_filled(benchmark::State& state) {
   Buffer<float> filtered = guarded(std::vector<float>(m.disparity.size()), "filtered");
   time_on_device(state, [&](OpenClStages& s) {
     s.weighted_median_filled(disparity, consistent, f.device_images[PMS_VIEW_LEFT], weights,
-                             m.radius, m.step, filtered);
+                             m.radius, m.step, m.background_margin, filtered);
   });
   set_work_counters(state,
                     weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));

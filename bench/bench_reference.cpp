@@ -172,7 +172,7 @@ void left_right_check(benchmark::State& state) {
       testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(flexsight::left_right_check(pair.left, pair.right, c.width,
-                                                         c.height, kLrTolerance,
+                                                         c.height, PMS_VIEW_LEFT, kLrTolerance,
                                                          reference_threads()));
   });
   set_work_counters(state, left_right_check_work(c.width, c.height));
@@ -197,7 +197,7 @@ void weighted_median_filled(benchmark::State& state) {
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(flexsight::weighted_median_filled(
         m.disparity, m.consistent, f.images[PMS_VIEW_LEFT], m.weights.data(), m.radius, m.step,
-        reference_threads()));
+        m.background_margin, reference_threads()));
   });
   set_work_counters(state,
                     weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));

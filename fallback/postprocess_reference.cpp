@@ -1,20 +1,22 @@
 #include "fallback/postprocess_reference.h"
 
 #include <algorithm>
+#include <cfloat>
 
 #include "kernels/postprocess_math.h"
 
 namespace flexsight {
 
-std::vector<std::uint8_t> left_right_check(const std::vector<float>& left_disparity,
-                                           const std::vector<float>& right_disparity, int width,
-                                           int height, float tolerance, int threads) {
-  std::vector<std::uint8_t> consistent(left_disparity.size());
+std::vector<std::uint8_t> left_right_check(const std::vector<float>& disparity,
+                                           const std::vector<float>& other_disparity, int width,
+                                           int height, int view, float tolerance, int threads) {
+  const float direction = view == PMS_VIEW_LEFT ? -1.0f : 1.0f;
+  std::vector<std::uint8_t> consistent(disparity.size());
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       consistent[y * width + x] = static_cast<std::uint8_t>(pms_lr_consistent(
-          left_disparity.data(), right_disparity.data(), width, x, y, -1.0f, tolerance));
+          disparity.data(), other_disparity.data(), width, x, y, direction, tolerance));
     }
   }
   return consistent;
@@ -38,11 +40,12 @@ std::vector<float> fill_inconsistent(const std::vector<float>& planes,
 namespace {
 
 // The weighted median at every pixel where `filter` is nonzero (every pixel when it is
-// null), voting the window pixels where `usable` is nonzero (all when null).
+// null), voting the window pixels where `usable` is nonzero (all when null) whose
+// disparity is at most the pixel's own plus `margin`.
 std::vector<float> weighted_median(const std::vector<float>& disparity,
                                    const std::uint8_t* filter, const std::uint8_t* usable,
-                                   const ViewImage& image, const float* weights, int radius,
-                                   int step, int threads) {
+                                   float margin, const ViewImage& image, const float* weights,
+                                   int radius, int step, int threads) {
   const int width = image.width;
   const int height = image.height;
   std::vector<float> filtered(disparity);
@@ -57,9 +60,9 @@ std::vector<float> weighted_median(const std::vector<float>& disparity,
       for (int x = 0; x < width; ++x) {
         int index = y * width + x;
         if (filter && !filter[index]) continue;
-        int n = pms_gather_median_samples(disparity.data(), usable, image.color.data(), weights,
-                                          width, height, x, y, radius, step, values.data(),
-                                          sample_weights.data());
+        int n = pms_gather_median_samples(disparity.data(), usable, disparity[index] + margin,
+                                          image.color.data(), weights, width, height, x, y,
+                                          radius, step, values.data(), sample_weights.data());
         if (n == 0) continue;
         std::copy(values.begin(), values.begin() + n, sorted.begin());
         std::sort(sorted.begin(), sorted.begin() + n);
@@ -75,17 +78,20 @@ std::vector<float> weighted_median(const std::vector<float>& disparity,
 std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
                                           const std::vector<std::uint8_t>& consistent,
                                           const ViewImage& image, const float* weights,
-                                          int radius, int step, int threads) {
+                                          int radius, int step, float background_margin,
+                                          int threads) {
   std::vector<std::uint8_t> inconsistent(consistent.size());
   for (size_t i = 0; i < consistent.size(); ++i) inconsistent[i] = !consistent[i];
-  return weighted_median(disparity, inconsistent.data(), consistent.data(), image, weights,
-                         radius, step, threads);
+  return weighted_median(disparity, inconsistent.data(), consistent.data(), background_margin,
+                         image, weights, radius, step, threads);
 }
 
 std::vector<float> weighted_median_all(const std::vector<float>& disparity,
                                        const ViewImage& image, const float* weights, int radius,
                                        int threads) {
-  return weighted_median(disparity, nullptr, nullptr, image, weights, radius, 1, threads);
+  // FLT_MAX: every disparity votes (d + FLT_MAX rounds to FLT_MAX, as in the kernel).
+  return weighted_median(disparity, nullptr, nullptr, FLT_MAX, image, weights, radius, 1,
+                         threads);
 }
 
 }  // namespace flexsight

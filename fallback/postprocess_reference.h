@@ -10,10 +10,11 @@
 
 namespace flexsight {
 
-// 1 where the left disparity and the right disparity it points at agree.
-std::vector<std::uint8_t> left_right_check(const std::vector<float>& left_disparity,
-                                           const std::vector<float>& right_disparity, int width,
-                                           int height, float tolerance, int threads);
+// 1 where the disparity of `view` and the other view's disparity it points at agree.
+std::vector<std::uint8_t> left_right_check(const std::vector<float>& disparity,
+                                           const std::vector<float>& other_disparity, int width,
+                                           int height, int view, float tolerance,
+                                           int threads);
 
 // Planes where inconsistent pixels took the lower (background) plane of the nearest
 // consistent pixels on their row; consistent pixels keep theirs.
@@ -22,13 +23,15 @@ std::vector<float> fill_inconsistent(const std::vector<float>& planes,
                                      int height, int threads);
 
 // For every inconsistent pixel, the weighted median of the consistent pixels'
-// disparities in a window (radius, step), weights from `weights` indexed by the colour
-// difference to the centre; a window without consistent pixels keeps the filled value.
-// Consistent pixels are copied.
+// disparities in a window (radius, step) that are at most `background_margin` above the
+// pixel's filled disparity, weights from `weights` indexed by the colour difference to
+// the centre; a window without such pixels keeps the filled value. Consistent pixels are
+// copied.
 std::vector<float> weighted_median_filled(const std::vector<float>& disparity,
                                           const std::vector<std::uint8_t>& consistent,
                                           const ViewImage& image, const float* weights,
-                                          int radius, int step, int threads);
+                                          int radius, int step, float background_margin,
+                                          int threads);
 
 // The weighted median of every pixel's window (radius, step 1) over all disparities.
 std::vector<float> weighted_median_all(const std::vector<float>& disparity,

@@ -40,9 +40,12 @@ void StereoParams::check() const {
           "max-normal-delta", "must be in [0, 2]");
   require(coarsest_width >= 8, "coarsest-width", "must be at least 8");
   require(pyramid_factor == 2, "pyramid-factor", "only 2 is supported (exact plane carrying)");
+  require(fill_coarse == 0 || fill_coarse == 1, "fill-coarse", "must be 0 or 1");
   require(std::isfinite(lr_tolerance) && lr_tolerance >= 0, "lr-tolerance", "must be >= 0");
   require(median_window >= 1 && median_window % 2 == 1 && median_window <= 101, "median-window",
           "must be odd and in 1..101");
+  require(!std::isnan(median_background_margin) && median_background_margin >= 0,
+          "median-background-margin", "must be >= 0 (inf: every consistent pixel votes)");
   require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
   require(final_median_window >= 1 && final_median_window % 2 == 1 && final_median_window <= 15,
           "final-median-window", "must be odd and in 1..15 (1 = off)");

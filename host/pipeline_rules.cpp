@@ -68,6 +68,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
 
   plan.use_confidence = !plan.coarsest;
   plan.compute_confidence = level > 0;
+  plan.fill_before_carry = level > 0 && params.fill_coarse == 1;
   plan.name = "level " + std::to_string(level) + " (" + std::to_string(width) + "x" +
               std::to_string(height) + ")";
   return plan;

@@ -41,6 +41,9 @@ struct LevelPlan {
   bool use_confidence = false;
   // The level computes the confidence that steers the next finer level.
   bool compute_confidence = false;
+  // Then its inconsistent pixels take the background plane (fill_inconsistent) before
+  // the planes are carried.
+  bool fill_before_carry = false;
   // "level 2 (160x120)": the stage name of the timings and progress lines.
   std::string name;
 

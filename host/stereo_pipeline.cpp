@@ -99,6 +99,15 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
         confidence[view] =
             lr_confidence(disparity[view], disparity[1 - view], width, height, view, threads);
       }
+      if (plan.fill_before_carry) {
+        for (int view = 0; view < 2; ++view) {
+          const std::vector<std::uint8_t> consistent =
+              left_right_check(disparity[view], disparity[1 - view], width, height, view,
+                               params.lr_tolerance, threads);
+          fields[view].planes =
+              fill_inconsistent(fields[view].planes, consistent, width, height, threads);
+        }
+      }
     }
     result.timings.push_back({plan.name, seconds_since(start)});
   }
@@ -111,7 +120,8 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   const std::vector<float> raw_left = plane_disparities(fields[PMS_VIEW_LEFT], threads);
   const std::vector<float> raw_right = plane_disparities(fields[PMS_VIEW_RIGHT], threads);
   const std::vector<std::uint8_t> consistent =
-      left_right_check(raw_left, raw_right, width, height, params.lr_tolerance, threads);
+      left_right_check(raw_left, raw_right, width, height, PMS_VIEW_LEFT, params.lr_tolerance,
+                       threads);
   PlaneField filled;
   filled.width = width;
   filled.height = height;
@@ -119,7 +129,8 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   const std::vector<float> median_weights = make_support_weight_table(params.median_gamma);
   std::vector<float> disparity = weighted_median_filled(
       plane_disparities(filled, threads), consistent, pyramid[PMS_VIEW_LEFT][0],
-      median_weights.data(), params.median_window / 2, params.window_step, threads);
+      median_weights.data(), params.median_window / 2, params.window_step,
+      params.median_background_margin, threads);
   if (params.final_median_window > 1) {
     const std::vector<float> final_weights = make_support_weight_table(params.final_median_gamma);
     disparity = weighted_median_all(disparity, pyramid[PMS_VIEW_LEFT][0], final_weights.data(),

@@ -25,15 +25,17 @@ inline void pms_insertion_sort(float* values, int n) {
 }
 
 /* The weighted median at (x, y) of the window pixels where `usable` is nonzero (all when
- * it is 0), or the pixel's own disparity when none is. */
+ * it is 0) and the disparity is at most `max_value`, or the pixel's own disparity when
+ * none is. */
 inline float pms_median_at(const __global float* disparity, const __global uchar* usable,
-                           const __global float* color, const __global float* weights,
-                           int width, int height, int x, int y, int radius, int step) {
+                           float max_value, const __global float* color,
+                           const __global float* weights, int width, int height, int x, int y,
+                           int radius, int step) {
   float values[PMS_MEDIAN_MAX_SAMPLES];
   float sample_weights[PMS_MEDIAN_MAX_SAMPLES];
   float sorted[PMS_MEDIAN_MAX_SAMPLES];
-  int n = pms_gather_median_samples(disparity, usable, color, weights, width, height, x, y,
-                                    radius, step, values, sample_weights);
+  int n = pms_gather_median_samples(disparity, usable, max_value, color, weights, width, height,
+                                    x, y, radius, step, values, sample_weights);
   if (n == 0) return disparity[y * width + x];
   for (int i = 0; i < n; ++i) sorted[i] = values[i];
   pms_insertion_sort(sorted, n);
@@ -44,13 +46,15 @@ __kernel void weighted_median_filled(const __global float* disparity,
                                      const __global uchar* consistent,
                                      const __global float* color, const __global float* weights,
                                      int width, int height, int radius, int step,
-                                     __global float* filtered) {
+                                     float background_margin, __global float* filtered) {
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
   int index = y * width + x;
-  filtered[index] = consistent[index] ? disparity[index]
-                                      : pms_median_at(disparity, consistent, color, weights,
-                                                      width, height, x, y, radius, step);
+  filtered[index] =
+      consistent[index]
+          ? disparity[index]
+          : pms_median_at(disparity, consistent, disparity[index] + background_margin, color,
+                          weights, width, height, x, y, radius, step);
 }
 
 /* Every pixel, every window pixel voting, step 1 (reference: weighted_median_all). */
@@ -60,5 +64,5 @@ __kernel void weighted_median_all(const __global float* disparity, const __globa
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
   filtered[y * width + x] =
-      pms_median_at(disparity, 0, color, weights, width, height, x, y, radius, 1);
+      pms_median_at(disparity, 0, FLT_MAX, color, weights, width, height, x, y, radius, 1);
 }

@@ -254,12 +254,13 @@ struct MedianInputs {
   std::vector<float> weights;
   int radius;
   int step;
+  float background_margin;  // StereoParams::median_background_margin
 };
 
 inline MedianInputs median_inputs(const ReferenceLevel& f, const LevelCase& c) {
   return {plane_disparities(f.fields[PMS_VIEW_LEFT], 2),
           random_consistency(c.width, c.height, c.seed + 1), make_support_weight_table(7.5f),
-          c.window / 2, c.step};
+          c.window / 2, c.step, 2.0f};
 }
 
 }  // namespace flexsight::testing_support

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <random>
 
 #include "fallback/postprocess_reference.h"
@@ -16,10 +17,20 @@ TEST(LeftRightCheck, AcceptsAgreementAndRejectsOcclusionAndOutside) {
   // view says 2 everywhere but right pixel 1 (d = 5).
   std::vector<float> left = {2, 2, 2, 2, 0.4f, 2};
   std::vector<float> right = {2, 5, 2, 2, 2, 2};
-  auto ok = left_right_check(left, right, 6, 1, 1.0f, 1);
+  auto ok = left_right_check(left, right, 6, 1, PMS_VIEW_LEFT, 1.0f, 1);
   // x=0,1: match x - 2 < 0 -> outside; x=2: right[0]=2 ok; x=3: right[1]=5 bad;
   // x=4: round(3.6)=4, |0.4-2| > 1 bad; x=5: right[3]=2 ok.
   EXPECT_EQ(ok, (std::vector<std::uint8_t>{0, 0, 1, 0, 0, 1}));
+}
+
+TEST(LeftRightCheck, TheRightViewLooksToTheRight) {
+  // The same row seen from the right view: right pixel x matches left pixel x + d.
+  std::vector<float> right = {2, 5, 2, 2, 2, 2};
+  std::vector<float> left = {2, 2, 2, 2, 0.4f, 2};
+  auto ok = left_right_check(right, left, 6, 1, PMS_VIEW_RIGHT, 1.0f, 1);
+  // x=0: left[2]=2 ok; x=1: x+5=6 outside; x=2: left[4]=0.4 bad; x=3: left[5]=2 ok;
+  // x=4,5: x+2 outside.
+  EXPECT_EQ(ok, (std::vector<std::uint8_t>{1, 0, 0, 1, 0, 0}));
 }
 
 TEST(FillInconsistent, TakesTheLowerOfTheNearestValidPlanes) {
@@ -77,6 +88,9 @@ TEST(WeightedMedian, MatchesTheDefinitionOnRandomSamples) {
   }
 }
 
+// A background margin that lets every consistent pixel vote.
+constexpr float kEveryVote = FLT_MAX;
+
 TEST(WeightedMedian, FilterTouchesOnlyInconsistentPixels) {
   const int w = 9, h = 7;
   ViewImage image = make_view_image(cv::Mat(h, w, CV_8UC3, cv::Scalar(50, 50, 50)));
@@ -86,7 +100,7 @@ TEST(WeightedMedian, FilterTouchesOnlyInconsistentPixels) {
   std::vector<std::uint8_t> ok(w * h, 1);
   ok[3 * w + 4] = 0;
   auto weights = make_support_weight_table(10.0f);
-  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 1);
+  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, kEveryVote, 1);
   EXPECT_EQ(out[3 * w + 4], 4.0f);
   EXPECT_EQ(out[0], 31.0f);
 }
@@ -103,15 +117,45 @@ TEST(WeightedMedian, OnlyConsistentPixelsVoteForAFilledPixel) {
     ok[x] = 1;
   }
   auto weights = make_support_weight_table(10.0f);
-  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 1);
+  auto out = weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, kEveryVote, 1);
   EXPECT_EQ(out[2 * w + 2], 4.0f);
   // The bottom-right corner's 3x3 window (radius 1) holds no consistent pixel: it keeps
   // its filled value.
-  auto small = weighted_median_filled(disparity, ok, image, weights.data(), 1, 1, 1);
+  auto small = weighted_median_filled(disparity, ok, image, weights.data(), 1, 1, kEveryVote, 1);
   EXPECT_EQ(small[4 * w + 4], 30.0f);
   EXPECT_EQ(small[1 * w + 1], 4.0f);  // its window reaches the top row: 3 votes of 4 ...
   // ... against 6 of 30 would lose if the inconsistent pixels voted.
   EXPECT_EQ(weighted_median_all(disparity, image, weights.data(), 1, 1)[1 * w + 1], 30.0f);
+}
+
+TEST(WeightedMedian, VotesInFrontOfTheFilledBackgroundAreLeftOut) {
+  // A hole (the middle column, filled with the background's 10) between a consistent
+  // foreground (left, 25, the hole's colour) and background (right, 10.5 and 11, colours
+  // further away), so that in the 5x5 window the foreground's votes outweigh the
+  // background's, and 10.5 outweighs 11.
+  const int w = 5, h = 5;
+  cv::Mat colour(h, w, CV_8UC3, cv::Scalar(50, 50, 50));
+  colour.col(3).setTo(cv::Scalar(55, 55, 55));
+  colour.col(4).setTo(cv::Scalar(60, 60, 60));
+  ViewImage image = make_view_image(colour);
+  std::vector<float> disparity(w * h);
+  std::vector<std::uint8_t> ok(w * h, 1);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      disparity[y * w + x] = x < 2 ? 25.0f : (x == 2 ? 10.0f : (x == 3 ? 10.5f : 11.0f));
+    }
+    ok[y * w + 2] = 0;
+  }
+  auto weights = make_support_weight_table(10.0f);
+  const int centre = 2 * w + 2;
+  EXPECT_EQ(weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, kEveryVote, 1)[centre],
+            25.0f);
+  // Margin 2: 25 > 10 + 2 does not vote; the background's median is 10.5.
+  EXPECT_EQ(weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 2.0f, 1)[centre],
+            10.5f);
+  // Margin 0.25: no vote is left (10.5 > 10.25): the pixel keeps its filled value.
+  EXPECT_EQ(weighted_median_filled(disparity, ok, image, weights.data(), 2, 1, 0.25f, 1)[centre],
+            10.0f);
 }
 
 TEST(WeightedMedian, FilterOverAllPixelsRemovesAnIsolatedOutlierAndKeepsAnEdge) {

@@ -205,6 +205,16 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
         stages.lr_confidence(disparity[view], disparity[1 - view], width, height, view,
                              confidence[view]);
       }
+      if (plan.fill_before_carry) {
+        Buffer<std::uint8_t> consistent(context, pixels, "consistent");
+        for (int view = 0; view < 2; ++view) {
+          stages.left_right_check(disparity[view], disparity[1 - view], width, height, view,
+                                  params.lr_tolerance, consistent);
+          Buffer<float> filled(context, 4 * pixels, "filled planes");
+          stages.fill_inconsistent(fields[view].planes, consistent, width, height, filled);
+          fields[view].planes = std::move(filled);
+        }
+      }
     }
     context.finish();
     result.timings.push_back({plan.name, seconds_since(start)});
@@ -220,7 +230,7 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
                           Buffer<float>(context, pixels, "raw disparity (right)")};
   for (int view = 0; view < 2; ++view) stages.plane_disparities(fields[view], raw[view]);
   Buffer<std::uint8_t> consistent(context, pixels, "consistent");
-  stages.left_right_check(raw[PMS_VIEW_LEFT], raw[PMS_VIEW_RIGHT], width, height,
+  stages.left_right_check(raw[PMS_VIEW_LEFT], raw[PMS_VIEW_RIGHT], width, height, PMS_VIEW_LEFT,
                           params.lr_tolerance, consistent);
   DeviceField filled{width, height, Buffer<float>(context, 4 * pixels, "filled planes"),
                      Buffer<float>()};
@@ -232,7 +242,7 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
   Buffer<float> filtered(context, pixels, "filtered disparity");
   stages.weighted_median_filled(filled_disparity, consistent, pyramid[PMS_VIEW_LEFT][0],
                                 median_weights, params.median_window / 2, params.window_step,
-                                filtered);
+                                params.median_background_margin, filtered);
   const Buffer<float>* final_disparity = &filtered;
   if (params.final_median_window > 1) {
     const Buffer<float> final_weights(

@@ -184,14 +184,14 @@ void OpenClStages::upsample_nearest(const Buffer<float>& coarse, int coarse_widt
   launch(upsample_nearest_, fine_width, fine_height);
 }
 
-void OpenClStages::left_right_check(const Buffer<float>& left_disparity,
-                                    const Buffer<float>& right_disparity, int width, int height,
-                                    float tolerance, Buffer<std::uint8_t>& consistent) {
+void OpenClStages::left_right_check(const Buffer<float>& disparity,
+                                    const Buffer<float>& other_disparity, int width, int height,
+                                    int view, float tolerance, Buffer<std::uint8_t>& consistent) {
   const long long pixels = 1LL * width * height;
-  require_size(left_disparity, pixels, "left_right_check");
-  require_size(right_disparity, pixels, "left_right_check");
+  require_size(disparity, pixels, "left_right_check");
+  require_size(other_disparity, pixels, "left_right_check");
   require_size(consistent, pixels, "left_right_check");
-  left_right_check_.set_args(left_disparity, right_disparity, width, height, tolerance,
+  left_right_check_.set_args(disparity, other_disparity, width, height, view, tolerance,
                              consistent);
   launch(left_right_check_, width, height);
 }
@@ -210,7 +210,8 @@ void OpenClStages::fill_inconsistent(const Buffer<float>& planes,
 void OpenClStages::weighted_median_filled(const Buffer<float>& disparity,
                                           const Buffer<std::uint8_t>& consistent,
                                           const DeviceView& image, const Buffer<float>& weights,
-                                          int radius, int step, Buffer<float>& filtered) {
+                                          int radius, int step, float background_margin,
+                                          Buffer<float>& filtered) {
   const long long pixels = image.pixels();
   require_size(disparity, pixels, "weighted_median_filled");
   require_size(consistent, pixels, "weighted_median_filled");
@@ -220,7 +221,7 @@ void OpenClStages::weighted_median_filled(const Buffer<float>& disparity,
   if (radius < 0 || step < 1) throw std::invalid_argument("weighted_median_filled: bad window");
   Kernel& kernel = median_kernel("weighted_median_filled", 2 * (radius / step) + 1);
   kernel.set_args(disparity, consistent, image.color, weights, image.width, image.height, radius,
-                  step, filtered);
+                  step, background_margin, filtered);
   launch(kernel, image.width, image.height);
 }
 

@@ -44,15 +44,15 @@ class OpenClStages {
                         Buffer<float>& fine, int fine_width, int fine_height);
 
   // fallback/postprocess_reference.cpp.
-  void left_right_check(const Buffer<float>& left_disparity, const Buffer<float>& right_disparity,
-                        int width, int height, float tolerance,
+  void left_right_check(const Buffer<float>& disparity, const Buffer<float>& other_disparity,
+                        int width, int height, int view, float tolerance,
                         Buffer<std::uint8_t>& consistent);
   void fill_inconsistent(const Buffer<float>& planes, const Buffer<std::uint8_t>& consistent,
                          int width, int height, Buffer<float>& filled);
   void weighted_median_filled(const Buffer<float>& disparity,
                               const Buffer<std::uint8_t>& consistent, const DeviceView& image,
                               const Buffer<float>& weights, int radius, int step,
-                              Buffer<float>& filtered);
+                              float background_margin, Buffer<float>& filtered);
   void weighted_median_all(const Buffer<float>& disparity, const DeviceView& image,
                            const Buffer<float>& weights, int radius, Buffer<float>& filtered);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
@@ -18,6 +19,8 @@ struct PipelineCase {
   int window;
   int median_window;
   int ndisp;
+  int fill_coarse = 1;
+  float median_background_margin = 2.0f;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -47,6 +50,8 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.ndisp = c.ndisp;
   params.window = c.window;
   params.median_window = c.median_window;
+  params.fill_coarse = c.fill_coarse;
+  params.median_background_margin = c.median_background_margin;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -104,7 +109,9 @@ INSTANTIATE_TEST_SUITE_P(
     TeddyCrop, Pipeline,
     ::testing::Values(PipelineCase{"ppms_w11", StereoMethod::PPMS, 11, 11, 32},
                       PipelineCase{"pms_w11", StereoMethod::PMS, 11, 11, 32},
-                      PipelineCase{"ppms_default_windows", StereoMethod::PPMS, 35, 35, 48}),
+                      PipelineCase{"ppms_default_windows", StereoMethod::PPMS, 35, 35, 48},
+                      PipelineCase{"ppms_w11_no_coarse_fill_every_vote", StereoMethod::PPMS, 11,
+                                   11, 32, 0, INFINITY}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The post-processing kernels against fallback/postprocess_reference.cpp, byte for
 // byte, with a guard region after every output; inputs from tests/kernel_cases.h.
 #include <gtest/gtest.h>
+#include <cfloat>
 
 #include "fallback/postprocess_reference.h"
 #include "opencl_test_support.h"
@@ -15,12 +16,20 @@ TEST_P(PostProcessStage, LeftRightCheck) {
   const DisparityPair pair = random_disparities(c.width, c.height, c.ndisp, c.seed);
   const Buffer<float> left = guarded(pair.left, "left");
   const Buffer<float> right = guarded(pair.right, "right");
-  for (float tolerance : {0.0f, 0.5f, 1.0f}) {
-    const std::vector<std::uint8_t> expected =
-        left_right_check(pair.left, pair.right, c.width, c.height, tolerance, 2);
-    Buffer<std::uint8_t> consistent = guarded_output<std::uint8_t>(expected.size(), "consistent");
-    stages().left_right_check(left, right, c.width, c.height, tolerance, consistent);
-    EXPECT_TRUE(same_buffer(expected, consistent)) << "tolerance " << tolerance;
+  for (int view : {PMS_VIEW_LEFT, PMS_VIEW_RIGHT}) {
+    const std::vector<float>& own = view == PMS_VIEW_LEFT ? pair.left : pair.right;
+    const std::vector<float>& other = view == PMS_VIEW_LEFT ? pair.right : pair.left;
+    for (float tolerance : {0.0f, 0.5f, 1.0f}) {
+      const std::vector<std::uint8_t> expected =
+          left_right_check(own, other, c.width, c.height, view, tolerance, 2);
+      Buffer<std::uint8_t> consistent =
+          guarded_output<std::uint8_t>(expected.size(), "consistent");
+      stages().left_right_check(view == PMS_VIEW_LEFT ? left : right,
+                                view == PMS_VIEW_LEFT ? right : left, c.width, c.height, view,
+                                tolerance, consistent);
+      EXPECT_TRUE(same_buffer(expected, consistent)) << "view " << view << ", tolerance "
+                                                     << tolerance;
+    }
   }
 }
 
@@ -40,14 +49,18 @@ TEST_P(PostProcessStage, WeightedMedianFilled) {
   const LevelCase c = GetParam();
   LevelFixture f(c);
   const MedianInputs m = median_inputs(f, c);
-  const std::vector<float> expected = weighted_median_filled(
-      m.disparity, m.consistent, f.images[PMS_VIEW_LEFT], m.weights.data(), m.radius, m.step, 2);
-  Buffer<float> filtered = guarded_output<float>(expected.size(), "filtered");
-  stages().weighted_median_filled(guarded(m.disparity, "disparity"),
-                                  guarded(m.consistent, "consistent"),
-                                  f.device_images[PMS_VIEW_LEFT], guarded(m.weights, "weights"),
-                                  m.radius, m.step, filtered);
-  EXPECT_TRUE(same_buffer(expected, filtered));
+  // 0: only votes at or behind the filled disparity; FLT_MAX: every consistent vote.
+  for (float margin : {0.0f, m.background_margin, FLT_MAX}) {
+    const std::vector<float> expected =
+        weighted_median_filled(m.disparity, m.consistent, f.images[PMS_VIEW_LEFT],
+                               m.weights.data(), m.radius, m.step, margin, 2);
+    Buffer<float> filtered = guarded_output<float>(expected.size(), "filtered");
+    stages().weighted_median_filled(guarded(m.disparity, "disparity"),
+                                    guarded(m.consistent, "consistent"),
+                                    f.device_images[PMS_VIEW_LEFT], guarded(m.weights, "weights"),
+                                    m.radius, m.step, margin, filtered);
+    EXPECT_TRUE(same_buffer(expected, filtered)) << "margin " << margin;
+  }
 }
 
 TEST_P(PostProcessStage, WeightedMedianAll) {

@@ -1,0 +1,46 @@
+// The schedule rules both schedulers share (host/pipeline_rules.h): which level does
+// what. The byte-exact pipeline tests only prove that the two paths agree; these pin
+// the rules themselves.
+#include <gtest/gtest.h>
+
+#include "host/pipeline_rules.h"
+
+using namespace flexsight;
+
+TEST(PlanLevel, OnlyTheCoarsestLevelStartsFromRandomPlanesAndUsesNoConfidence) {
+  StereoParams params;
+  const int levels = 3;
+  for (int level = 0; level < levels; ++level) {
+    const LevelPlan plan = plan_level(params, level, levels, 100 >> level, 80 >> level);
+    EXPECT_EQ(plan.coarsest, level == levels - 1) << level;
+    EXPECT_EQ(plan.use_confidence, level != levels - 1) << level;
+    EXPECT_EQ(plan.iterations, level == levels - 1 ? params.iterations : params.iterations_fine);
+    EXPECT_EQ(plan.ndisp, level_ndisp(params.ndisp, level));
+  }
+}
+
+TEST(PlanLevel, EveryLevelButTheFinestIsCheckedAndFilledBeforeItsPlanesAreCarried) {
+  StereoParams params;
+  params.fill_coarse = 1;
+  EXPECT_TRUE(plan_level(params, 2, 3, 25, 20).fill_before_carry);
+  EXPECT_TRUE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
+  EXPECT_FALSE(plan_level(params, 0, 3, 100, 80).fill_before_carry);  // post-processing does it
+  params.fill_coarse = 0;
+  EXPECT_FALSE(plan_level(params, 2, 3, 25, 20).fill_before_carry);
+  EXPECT_FALSE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
+}
+
+TEST(PlanLevel, BelowTheCoarsestLevelTheSearchStartsAtTheFineRange) {
+  StereoParams params;
+  params.ndisp = 256;
+  EXPECT_EQ(plan_level(params, 2, 3, 25, 20).schedule.initial_range, 32.0f);  // 64 / 2
+  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).schedule.initial_range, params.fine_search_range);
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).name, "level 0 (100x80)");
+}
+
+TEST(LevelNdisp, HalvesRoundingUpAndKeepsAtLeastTwo) {
+  EXPECT_EQ(level_ndisp(65, 0), 65);
+  EXPECT_EQ(level_ndisp(65, 1), 33);
+  EXPECT_EQ(level_ndisp(65, 2), 17);
+  EXPECT_EQ(level_ndisp(3, 4), 2);
+}
