@@ -28,10 +28,11 @@ SceneScores score_fixture(StereoMethod method) {
 
 // Recorded with the default parameters (seed 1), 2026-11-23, with the census term
 // (census_weight 4), the post-processing's two weighted medians, the hole median's
-// background margin (2 px) and PPMS's filling of the coarser levels. The margin costs
-// flat PMS on this small crop (4.19 -> 4.63 %) while it gains on the 15 full scenes.
-constexpr double kRecordedPpmsBad2All = 3.97;
-constexpr double kRecordedPpmsBad2Nonocc = 1.81;
+// background margin (2 px), PPMS's filling of the coarser levels and its 16-px fine
+// search. The margin costs flat PMS on this small crop (4.19 -> 4.63 %) while it gains
+// on the 15 full scenes.
+constexpr double kRecordedPpmsBad2All = 3.86;
+constexpr double kRecordedPpmsBad2Nonocc = 1.74;
 constexpr double kRecordedPmsBad2All = 4.63;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
