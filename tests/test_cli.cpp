@@ -182,6 +182,34 @@ TEST_F(Cli, OpenClAndReferenceWriteTheSameBytes) {
   EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
 }
 
+TEST_F(Cli, WritesBothViewsRawDisparities) {
+  // The right image is the left one moved 4 px to the left: both views see disparity 4.
+  const cv::Mat left = flexsight::testing_support::random_rgb8(64, 48, 1);
+  cv::Mat right = flexsight::testing_support::random_rgb8(64, 48, 2);
+  left.colRange(4, 64).copyTo(right.colRange(0, 60));
+  cv::imwrite(left_, left);
+  cv::imwrite(right_, right);
+  const std::string raw_left = (dir_ / "raw_left.pfm").string();
+  const std::string raw_right = (dir_ / "raw_right.pfm").string();
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ + " --raw " +
+                                  raw_left + " --raw-right " + raw_right +
+                                  " --ndisp 16 --window 7 --quiet --device reference",
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat views[2] = {flexsight::read_pfm(raw_left), flexsight::read_pfm(raw_right)};
+  for (const cv::Mat& raw : views) {
+    ASSERT_EQ(raw.size(), cv::Size(64, 48));
+    int near_four = 0;
+    for (int y = 4; y < 44; ++y) {
+      for (int x = 8; x < 56; ++x) near_four += std::fabs(raw.at<float>(y, x) - 4.0f) <= 0.5f;
+    }
+    EXPECT_GT(near_four, 40 * 48 * 9 / 10);
+  }
+  // The two files are the two views, not one view twice: at the borders that only one
+  // view can match (the left image's first columns, the right's last), they differ.
+  EXPECT_GT(cv::norm(views[0], views[1], cv::NORM_L1), 0.0);
+}
+
 TEST_F(Cli, RejectsAnUnknownDevice) {
   expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --device bogus",
                   "--device");

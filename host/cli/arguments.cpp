@@ -175,7 +175,13 @@ std::string stereo_params_help() {
   std::ostringstream out;
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
-    for (size_t pad = std::string(option.name).size(); pad < 22; ++pad) out << ' ';
+    // A name too long for the column gets its help on the next line, as --device's does.
+    const size_t width = std::string(option.name).size();
+    if (width >= 22) {
+      out << "\n" << std::string(32, ' ');
+    } else {
+      for (size_t pad = width; pad < 22; ++pad) out << ' ';
+    }
     out << option.help << "\n";
   }
   return out.str();

@@ -39,6 +39,8 @@ void print_help() {
                "  -o DISP.pfm                 output disparity (left view, PFM)\n"
                "  --png COLOR.png             colored disparity picture\n"
                "  --raw RAW.pfm               left disparity before post-processing (PFM)\n"
+               "  --raw-right RAW.pfm         right view's disparity before post-processing (PFM,\n"
+               "                              right-image pixels; with --raw: the left/right check)\n"
                "  --gt GT.pfm                 ground truth: print bad-N and average error\n"
                "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
                "  --planes PLANES.pfm         per-pixel planes (a, b, c) as a 3-channel PFM\n"
@@ -166,6 +168,7 @@ int run_stereo_command(std::vector<std::string> args) {
   if (output.empty()) output = take_option(args, "--output");
   const std::string png = take_option(args, "--png");
   const std::string raw = take_option(args, "--raw");
+  const std::string raw_right = take_option(args, "--raw-right");
   const std::string planes = take_option(args, "--planes");
   const std::string conf = take_option(args, "--conf");
   const std::string conf_png = take_option(args, "--conf-png");
@@ -189,10 +192,10 @@ int run_stereo_command(std::vector<std::string> args) {
   if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
   validate_inputs(pair.left, pair.right, params);  // before the kernels are built
   check_cloud_outputs(cloud_options, pair.left.cols, pair.left.rows);
-  if (opencv && (!raw.empty() || !planes.empty() || !conf.empty() || !conf_png.empty() ||
+  if (opencv && (!raw.empty() || !raw_right.empty() || !planes.empty() || !conf.empty() || !conf_png.empty() ||
                  backend_options.profile)) {
     throw InputError("option --method", std::string(opencv_matcher_name(*opencv)) +
-                                            " gives a disparity only: no --raw, --planes, "
+                                            " gives a disparity only: no --raw, --raw-right, --planes, "
                                             "--conf, --conf-png or --profile");
   }
   std::string used;
@@ -216,6 +219,7 @@ int run_stereo_command(std::vector<std::string> args) {
 
   write_pfm(output, result.disparity);
   if (!raw.empty()) write_pfm(raw, result.raw_left);
+  if (!raw_right.empty()) write_pfm(raw_right, result.raw_right);
   if (!planes.empty()) write_pfm(planes, result.planes_left);
   cv::Mat confidence;
   if (!opencv && (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d())) {
