@@ -249,7 +249,8 @@ void fill_inconsistent(benchmark::State& state) {
   const Buffer<std::uint8_t> consistent = guarded(flags, "consistent");
   Buffer<float> filled = guarded(std::vector<float>(4 * flags.size()), "filled");
   time_on_device(state, [&](OpenClStages& s) {
-    s.fill_inconsistent(planes, consistent, c.width, c.height, filled);
+    s.fill_inconsistent(planes, consistent, c.width, c.height,
+                        StereoParams().fill_max_extrapolation, filled);
   });
   set_work_counters(state, fill_inconsistent_work(c.width, c.height, flags));
 }

@@ -185,7 +185,8 @@ void fill_inconsistent(benchmark::State& state) {
   const std::vector<float>& planes = fixture(c).fields[PMS_VIEW_LEFT].planes;
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(
-        flexsight::fill_inconsistent(planes, flags, c.width, c.height, reference_threads()));
+        flexsight::fill_inconsistent(planes, flags, c.width, c.height,
+                                     StereoParams().fill_max_extrapolation, reference_threads()));
   });
   set_work_counters(state, fill_inconsistent_work(c.width, c.height, flags));
 }

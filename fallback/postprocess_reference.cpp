@@ -24,14 +24,15 @@ std::vector<std::uint8_t> left_right_check(const std::vector<float>& disparity,
 
 std::vector<float> fill_inconsistent(const std::vector<float>& planes,
                                      const std::vector<std::uint8_t>& consistent, int width,
-                                     int height, int threads) {
+                                     int height, float max_extrapolation, int threads) {
   std::vector<float> filled(planes);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       int index = y * width + x;
       if (consistent[index]) continue;
-      pms_fill_pixel(planes.data(), consistent.data(), width, x, y, &filled[4 * index]);
+      pms_fill_pixel(planes.data(), consistent.data(), width, x, y, max_extrapolation,
+                     &filled[4 * index]);
     }
   }
   return filled;

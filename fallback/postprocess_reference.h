@@ -17,10 +17,11 @@ std::vector<std::uint8_t> left_right_check(const std::vector<float>& disparity,
                                            int threads);
 
 // Planes where inconsistent pixels took the lower (background) plane of the nearest
-// consistent pixels on their row; consistent pixels keep theirs.
+// consistent pixels on their row, its disparity there at most `max_extrapolation` from
+// the source pixel's own (pms_fill_pixel); consistent pixels keep theirs.
 std::vector<float> fill_inconsistent(const std::vector<float>& planes,
                                      const std::vector<std::uint8_t>& consistent, int width,
-                                     int height, int threads);
+                                     int height, float max_extrapolation, int threads);
 
 // For every inconsistent pixel, the weighted median of the consistent pixels'
 // disparities in a window (radius, step) that are at most `background_margin` above the

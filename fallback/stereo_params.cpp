@@ -26,6 +26,10 @@ void StereoParams::check() const {
   require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
   require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
+  require(!std::isnan(fill_max_extrapolation) && fill_max_extrapolation >= 0,
+          "fill-max-extrapolation", "must be >= 0 (inf: no limit)");
+  require(iterations_coarsest >= 1 && iterations_coarsest <= 100, "iterations-coarsest",
+          "must be in 1..100");
   require(iterations_fine >= 0 && iterations_fine <= 100, "iterations-fine",
           "must be in 0..100");
   require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",

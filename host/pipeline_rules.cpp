@@ -53,7 +53,11 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.ndisp = level_ndisp(params.ndisp, level);
   plan.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
                params.tau_color, params.tau_gradient, params.census_weight};
-  plan.iterations = plan.coarsest ? params.iterations : params.iterations_fine;
+  if (params.method == StereoMethod::PMS) {
+    plan.iterations = params.iterations;
+  } else {
+    plan.iterations = plan.coarsest ? params.iterations_coarsest : params.iterations_fine;
+  }
 
   // Half the level's disparity range at first; below the coarsest level the carried
   // planes are already close, so the search starts at most at fine_search_range.

@@ -105,7 +105,8 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
               left_right_check(disparity[view], disparity[1 - view], width, height, view,
                                params.lr_tolerance, threads);
           fields[view].planes =
-              fill_inconsistent(fields[view].planes, consistent, width, height, threads);
+              fill_inconsistent(fields[view].planes, consistent, width, height,
+                                params.fill_max_extrapolation, threads);
         }
       }
     }
@@ -125,7 +126,8 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   PlaneField filled;
   filled.width = width;
   filled.height = height;
-  filled.planes = fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height, threads);
+  filled.planes = fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height,
+                                    params.fill_max_extrapolation, threads);
   const std::vector<float> median_weights = make_support_weight_table(params.median_gamma);
   std::vector<float> disparity = weighted_median_filled(
       plane_disparities(filled, threads), consistent, pyramid[PMS_VIEW_LEFT][0],

@@ -5,7 +5,8 @@
 #include "pms_kernel_support.h"
 
 __kernel void fill_inconsistent(const __global float* planes, const __global uchar* consistent,
-                                int width, int height, __global float* filled) {
+                                int width, int height, float max_extrapolation,
+                                __global float* filled) {
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
   int index = y * width + x;
@@ -13,7 +14,7 @@ __kernel void fill_inconsistent(const __global float* planes, const __global uch
   if (consistent[index]) {
     pms_load_plane(planes, index, abc);
   } else {
-    pms_fill_pixel(planes, consistent, width, x, y, abc);
+    pms_fill_pixel(planes, consistent, width, x, y, max_extrapolation, abc);
   }
   filled[4 * index] = abc[0];
   filled[4 * index + 1] = abc[1];

@@ -43,33 +43,52 @@ PMS_INLINE int pms_lr_consistent(const PMS_GLOBAL float* disparity,
   return d_other >= 0.0f && PMS_FABS(d - d_other) <= tolerance;
 }
 
+/* The disparity that the plane of consistent pixel `source_x` (on row y) gives at
+ * (x, y), kept within max_extrapolation of the source's own disparity: a plane fitted
+ * to a window is right near it, but its slope, carried tens of pixels across a hole,
+ * lands far from the background it should continue. */
+PMS_INLINE float pms_fill_disparity(const PMS_GLOBAL float* plane, int source_x, int x, int y,
+                                    float max_extrapolation) {
+  float at_source = pms_plane_disparity(plane[0], plane[1], plane[2], (float)source_x, (float)y);
+  float d = pms_plane_disparity(plane[0], plane[1], plane[2], (float)x, (float)y);
+  return PMS_FMIN(PMS_FMAX(d, at_source - max_extrapolation), at_source + max_extrapolation);
+}
+
 /* Occlusion filling (Bleyer et al. 2011, Sec. 3.3): an inconsistent pixel takes the
  * plane of the nearest consistent pixel to its left or right, whichever gives the lower
- * disparity at the pixel (occluded pixels belong to the background). With no consistent
- * pixel on the row, the pixel keeps its own plane. Writes (a, b, c). */
+ * disparity at the pixel (occluded pixels belong to the background), its disparity at
+ * the pixel limited to max_extrapolation from the source's own (pms_fill_disparity; the
+ * plane keeps its slope and moves). INFINITY gives Bleyer et al.'s plain extrapolation.
+ * With no consistent pixel on the row, the pixel keeps its own plane. Writes (a, b, c). */
 PMS_INLINE void pms_fill_pixel(const PMS_GLOBAL float* planes,
                                const PMS_GLOBAL unsigned char* consistent, int width, int x,
-                               int y, float* abc) {
+                               int y, float max_extrapolation, float* abc) {
   int row = y * width;
   int left = x - 1;
   while (left >= 0 && !consistent[row + left]) --left;
   int right = x + 1;
   while (right < width && !consistent[row + right]) ++right;
-  int source = row + x;
+  int source_x = x;
+  float d = 0.0f;
   if (left >= 0 && right < width) {
-    const PMS_GLOBAL float* pl = planes + 4 * (row + left);
-    const PMS_GLOBAL float* pr = planes + 4 * (row + right);
-    float dl = pms_plane_disparity(pl[0], pl[1], pl[2], (float)x, (float)y);
-    float dr = pms_plane_disparity(pr[0], pr[1], pr[2], (float)x, (float)y);
-    source = dl <= dr ? row + left : row + right;
-  } else if (left >= 0) {
-    source = row + left;
-  } else if (right < width) {
-    source = row + right;
+    float dl = pms_fill_disparity(planes + 4 * (row + left), left, x, y, max_extrapolation);
+    float dr = pms_fill_disparity(planes + 4 * (row + right), right, x, y, max_extrapolation);
+    source_x = dl <= dr ? left : right;
+    d = dl <= dr ? dl : dr;
+  } else if (left >= 0 || right < width) {
+    source_x = left >= 0 ? left : right;
+    d = pms_fill_disparity(planes + 4 * (row + source_x), source_x, x, y, max_extrapolation);
   }
-  abc[0] = planes[4 * source];
-  abc[1] = planes[4 * source + 1];
-  abc[2] = planes[4 * source + 2];
+  const PMS_GLOBAL float* source = planes + 4 * (row + source_x);
+  abc[0] = source[0];
+  abc[1] = source[1];
+  abc[2] = source[2];
+  if (source_x != x &&
+      d != pms_plane_disparity(source[0], source[1], source[2], (float)x, (float)y)) {
+    /* Limited: the plane through d at (x, y) with the source's slopes. Unlimited
+     * planes are copied as they are, so INFINITY reproduces plain extrapolation. */
+    abc[2] = d - source[0] * (float)x - source[1] * (float)y;
+  }
 }
 
 /* Collects the disparities of the window around (x, y) (offsets k*step within

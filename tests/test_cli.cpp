@@ -67,7 +67,9 @@ class Cli : public ::testing::Test {
           << "left behind: " << entry.path();
     }
   }
-  std::string quick() const { return " --window 7 --iterations 1 --iterations-fine 1 --quiet"; }
+  std::string quick() const {
+    return " --window 7 --iterations 1 --iterations-coarsest 1 --iterations-fine 1 --quiet";
+  }
   fs::path dir_;
   std::string left_, right_, output_;
 };
@@ -88,7 +90,9 @@ TEST_F(Cli, MatchesAPairAndWritesPfmAndPng) {
 
 TEST_F(Cli, SceneFolderReadsNdispFromCalibAndScoresAgainstGroundTruth) {
   RunResult r = run_flexsight("stereo " + flexsight::testing_support::fixture_dir() + " -o " +
-                                  output_ + " --window 11 --iterations 1 --iterations-fine 1",
+                                  output_ +
+                                  " --window 11 --iterations 1 --iterations-coarsest 1 "
+                                  "--iterations-fine 1",
                               dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("ndisp 32 from calib.txt"), std::string::npos) << r.err;

@@ -14,7 +14,8 @@ TEST(PlanLevel, OnlyTheCoarsestLevelStartsFromRandomPlanesAndUsesNoConfidence) {
     const LevelPlan plan = plan_level(params, level, levels, 100 >> level, 80 >> level);
     EXPECT_EQ(plan.coarsest, level == levels - 1) << level;
     EXPECT_EQ(plan.use_confidence, level != levels - 1) << level;
-    EXPECT_EQ(plan.iterations, level == levels - 1 ? params.iterations : params.iterations_fine);
+    EXPECT_EQ(plan.iterations,
+              level == levels - 1 ? params.iterations_coarsest : params.iterations_fine);
     EXPECT_EQ(plan.ndisp, level_ndisp(params.ndisp, level));
   }
 }
@@ -28,6 +29,20 @@ TEST(PlanLevel, EveryLevelButTheFinestIsCheckedAndFilledBeforeItsPlanesAreCarrie
   params.fill_coarse = 0;
   EXPECT_FALSE(plan_level(params, 2, 3, 25, 20).fill_before_carry);
   EXPECT_FALSE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
+}
+
+TEST(PlanLevel, EachMethodTakesItsOwnIterationCounts) {
+  StereoParams params;
+  params.iterations = 3;
+  params.iterations_coarsest = 7;
+  params.iterations_fine = 2;
+  // PPMS on an image no wider than coarsest_width has one level: it is the coarsest.
+  EXPECT_EQ(plan_level(params, 0, 1, 100, 80).iterations, 7);
+  EXPECT_EQ(plan_level(params, 1, 2, 50, 40).iterations, 7);
+  EXPECT_EQ(plan_level(params, 0, 2, 100, 80).iterations, 2);
+  params.method = StereoMethod::PMS;
+  EXPECT_EQ(pipeline_level_count(params, 1000, 800), 1);
+  EXPECT_EQ(plan_level(params, 0, 1, 1000, 800).iterations, 3);
 }
 
 TEST(PlanLevel, BelowTheCoarsestLevelTheSearchStartsAtTheFineRange) {

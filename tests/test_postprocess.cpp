@@ -41,7 +41,7 @@ TEST(FillInconsistent, TakesTheLowerOfTheNearestValidPlanes) {
   planes[4 * 4 + 0] = 0.5f;
   planes[4 * 4 + 2] = 3.0f;
   std::vector<std::uint8_t> ok = {1, 0, 0, 0, 1};
-  auto filled = fill_inconsistent(planes, ok, 5, 1, 1);
+  auto filled = fill_inconsistent(planes, ok, 5, 1, INFINITY, 1);
   for (int x = 1; x <= 3; ++x) {
     EXPECT_EQ(filled[4 * x], 0.5f) << x;
     EXPECT_EQ(filled[4 * x + 2], 3.0f) << x;
@@ -51,11 +51,37 @@ TEST(FillInconsistent, TakesTheLowerOfTheNearestValidPlanes) {
 
 TEST(FillInconsistent, UsesTheOnlySideThereIsOrKeepsItsOwn) {
   std::vector<float> planes = {0, 0, 7, 0, 0, 0, 8, 0, 0, 0, 9, 0};
-  auto one_side = fill_inconsistent(planes, {0, 0, 1}, 3, 1, 1);
+  auto one_side = fill_inconsistent(planes, {0, 0, 1}, 3, 1, INFINITY, 1);
   EXPECT_EQ(one_side[2], 9.0f);
   EXPECT_EQ(one_side[6], 9.0f);
-  auto none = fill_inconsistent(planes, {0, 0, 0}, 3, 1, 1);
+  auto none = fill_inconsistent(planes, {0, 0, 0}, 3, 1, 2.0f, 1);
   EXPECT_EQ(none, planes);
+}
+
+TEST(FillInconsistent, KeepsTheFilledDisparityNearItsSource) {
+  // Row of 12: valid pixel 0 with the plane d = 20 - 1.5 x (a steep slope), valid pixel
+  // 11 with d = 30. Plain extrapolation gives pixel x the disparity 20 - 1.5 x; limited
+  // to 2 px it stays within [18, 22] of the source's 20, the plane keeping its slope.
+  std::vector<float> planes(4 * 12, 0.0f);
+  planes[0] = -1.5f;
+  planes[2] = 20.0f;
+  planes[4 * 11 + 2] = 30.0f;
+  std::vector<std::uint8_t> ok(12, 0);
+  ok[0] = ok[11] = 1;
+  const auto plain = fill_inconsistent(planes, ok, 12, 1, INFINITY, 1);
+  const auto limited = fill_inconsistent(planes, ok, 12, 1, 2.0f, 1);
+  for (int x = 1; x <= 10; ++x) {
+    const float* p = &plain[4 * x];
+    const float* l = &limited[4 * x];
+    EXPECT_EQ(p[0], -1.5f) << x;
+    EXPECT_EQ(p[2], 20.0f) << x;  // copied as it is
+    EXPECT_EQ(l[0], -1.5f) << x;  // slope kept
+    const float d = l[0] * static_cast<float>(x) + l[2];
+    EXPECT_FLOAT_EQ(d, std::max(20.0f - 1.5f * static_cast<float>(x), 18.0f)) << x;
+  }
+  // A limit of 0 fills with the source's own disparity (fronto-parallel in effect).
+  const auto constant = fill_inconsistent(planes, ok, 12, 1, 0.0f, 1);
+  EXPECT_FLOAT_EQ(-1.5f * 10.0f + constant[4 * 10 + 2], 20.0f);
 }
 
 TEST(WeightedMedian, MatchesTheDefinitionOnRandomSamples) {

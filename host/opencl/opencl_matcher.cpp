@@ -211,7 +211,8 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
           stages.left_right_check(disparity[view], disparity[1 - view], width, height, view,
                                   params.lr_tolerance, consistent);
           Buffer<float> filled(context, 4 * pixels, "filled planes");
-          stages.fill_inconsistent(fields[view].planes, consistent, width, height, filled);
+          stages.fill_inconsistent(fields[view].planes, consistent, width, height,
+                                   params.fill_max_extrapolation, filled);
           fields[view].planes = std::move(filled);
         }
       }
@@ -234,7 +235,8 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
                           params.lr_tolerance, consistent);
   DeviceField filled{width, height, Buffer<float>(context, 4 * pixels, "filled planes"),
                      Buffer<float>()};
-  stages.fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height, filled.planes);
+  stages.fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height,
+                           params.fill_max_extrapolation, filled.planes);
   Buffer<float> filled_disparity(context, pixels, "filled disparity");
   stages.plane_disparities(filled, filled_disparity);
   const Buffer<float> median_weights(context, make_support_weight_table(params.median_gamma),

@@ -198,12 +198,13 @@ void OpenClStages::left_right_check(const Buffer<float>& disparity,
 
 void OpenClStages::fill_inconsistent(const Buffer<float>& planes,
                                      const Buffer<std::uint8_t>& consistent, int width,
-                                     int height, Buffer<float>& filled) {
+                                     int height, float max_extrapolation,
+                                     Buffer<float>& filled) {
   const long long pixels = 1LL * width * height;
   require_size(planes, 4 * pixels, "fill_inconsistent");
   require_size(consistent, pixels, "fill_inconsistent");
   require_size(filled, 4 * pixels, "fill_inconsistent");
-  fill_inconsistent_.set_args(planes, consistent, width, height, filled);
+  fill_inconsistent_.set_args(planes, consistent, width, height, max_extrapolation, filled);
   launch(fill_inconsistent_, width, height);
 }
 

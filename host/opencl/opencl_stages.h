@@ -48,7 +48,8 @@ class OpenClStages {
                         int width, int height, int view, float tolerance,
                         Buffer<std::uint8_t>& consistent);
   void fill_inconsistent(const Buffer<float>& planes, const Buffer<std::uint8_t>& consistent,
-                         int width, int height, Buffer<float>& filled);
+                         int width, int height, float max_extrapolation,
+                         Buffer<float>& filled);
   void weighted_median_filled(const Buffer<float>& disparity,
                               const Buffer<std::uint8_t>& consistent, const DeviceView& image,
                               const Buffer<float>& weights, int radius, int step,

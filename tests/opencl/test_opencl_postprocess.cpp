@@ -37,12 +37,16 @@ TEST_P(PostProcessStage, FillInconsistent) {
   const LevelCase c = GetParam();
   LevelFixture f(c);
   const std::vector<std::uint8_t> consistent = random_consistency(c.width, c.height, c.seed);
-  const std::vector<float> expected =
-      fill_inconsistent(f.fields[0].planes, consistent, c.width, c.height, 2);
-  Buffer<float> filled = guarded_output<float>(expected.size(), "filled");
-  stages().fill_inconsistent(guarded(f.fields[0].planes, "planes"),
-                             guarded(consistent, "consistent"), c.width, c.height, filled);
-  EXPECT_TRUE(same_buffer(expected, filled));
+  // INFINITY: plain extrapolation; 0: the source's own disparity; 1.5: limited.
+  for (float limit : {INFINITY, 0.0f, 1.5f}) {
+    const std::vector<float> expected =
+        fill_inconsistent(f.fields[0].planes, consistent, c.width, c.height, limit, 2);
+    Buffer<float> filled = guarded_output<float>(expected.size(), "filled");
+    stages().fill_inconsistent(guarded(f.fields[0].planes, "planes"),
+                               guarded(consistent, "consistent"), c.width, c.height, limit,
+                               filled);
+    EXPECT_TRUE(same_buffer(expected, filled)) << "limit " << limit;
+  }
 }
 
 TEST_P(PostProcessStage, WeightedMedianFilled) {
