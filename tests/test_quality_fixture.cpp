@@ -30,10 +30,11 @@ SceneScores score_fixture(StereoMethod method) {
 // (census_weight 4), the post-processing's two weighted medians, the hole median's
 // background margin (2 px), PPMS's filling of the coarser levels and its 16-px fine
 // search. The margin costs flat PMS on this small crop (4.19 -> 4.63 %) while it gains
-// on the 15 full scenes.
+// on the 15 full scenes. 2026-11-30: the 2-px limit of the filled disparity's
+// extrapolation leaves PPMS here as it was and takes PMS to 4.54 %.
 constexpr double kRecordedPpmsBad2All = 3.86;
 constexpr double kRecordedPpmsBad2Nonocc = 1.74;
-constexpr double kRecordedPmsBad2All = 4.63;
+constexpr double kRecordedPmsBad2All = 4.54;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
 }  // namespace

@@ -21,6 +21,7 @@ struct PipelineCase {
   int ndisp;
   int fill_coarse = 1;
   float median_background_margin = 2.0f;
+  float fill_max_extrapolation = 2.0f;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -52,6 +53,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.median_window = c.median_window;
   params.fill_coarse = c.fill_coarse;
   params.median_background_margin = c.median_background_margin;
+  params.fill_max_extrapolation = c.fill_max_extrapolation;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -111,7 +113,9 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"pms_w11", StereoMethod::PMS, 11, 11, 32},
                       PipelineCase{"ppms_default_windows", StereoMethod::PPMS, 35, 35, 48},
                       PipelineCase{"ppms_w11_no_coarse_fill_every_vote", StereoMethod::PPMS, 11,
-                                   11, 32, 0, INFINITY}),
+                                   11, 32, 0, INFINITY},
+                      PipelineCase{"ppms_w11_plain_extrapolation", StereoMethod::PPMS, 11, 11, 32,
+                                   1, 2.0f, INFINITY}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
