@@ -26,8 +26,6 @@ void StereoParams::check() const {
   require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
   require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
-  require(!std::isnan(fill_max_extrapolation) && fill_max_extrapolation >= 0,
-          "fill-max-extrapolation", "must be >= 0 (inf: no limit)");
   require(iterations_coarsest >= 1 && iterations_coarsest <= 100, "iterations-coarsest",
           "must be in 1..100");
   require(iterations_fine >= 0 && iterations_fine <= 100, "iterations-fine",
@@ -46,6 +44,8 @@ void StereoParams::check() const {
   require(pyramid_factor == 2, "pyramid-factor", "only 2 is supported (exact plane carrying)");
   require(fill_coarse == 0 || fill_coarse == 1, "fill-coarse", "must be 0 or 1");
   require(std::isfinite(lr_tolerance) && lr_tolerance >= 0, "lr-tolerance", "must be >= 0");
+  require(!std::isnan(fill_max_extrapolation) && fill_max_extrapolation >= 0,
+          "fill-max-extrapolation", "must be >= 0 (inf: no limit)");
   require(median_window >= 1 && median_window % 2 == 1 && median_window <= 101, "median-window",
           "must be odd and in 1..101");
   require(!std::isnan(median_background_margin) && median_background_margin >= 0,

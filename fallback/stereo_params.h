@@ -73,10 +73,9 @@ struct StereoParams {
   // disparity stays within this many pixels of the neighbour's own (pms_fill_disparity):
   // a slope fitted to one window, carried across a wide hole, drifts off the background.
   // 15 MiddEval3 Q scenes, bad-2 all, seeds 1 / 2: no limit (Bleyer et al.) 12.28 /
-  // 12.19 %, 2 px 12.12 / 11.98 %, 4 px 12.12 / 11.96 %; 1 px 12.28 (seed 1). 2 to 4 px
-  // is a plateau. With 2 px, 12 of 15 scenes gain with both
-  // seeds (ArtL -1.1, PianoL -0.1 / -1.2, Playroom -1.0 / -0.8); Piano (+0.6) and Vintage
-  // (+0.2) lose.
+  // 12.19 %, 2 px 12.12 / 11.98 %, 4 px 12.12 / 11.96 %; 1 px 12.28 (seed 1): 2 to 4 px
+  // is a plateau. With 2 px, 12 of 15 scenes gain with both seeds (ArtL -1.1, PianoL
+  // -0.1 / -1.2, Playroom -1.0 / -0.8); Piano (+0.6) and Vintage (+0.2) lose.
   float fill_max_extrapolation = 2.0f;
   // Weighted median filter window (odd) and colour bandwidth for filled pixels.
   int median_window = 35;

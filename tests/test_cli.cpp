@@ -214,6 +214,16 @@ TEST_F(Cli, WritesBothViewsRawDisparities) {
   EXPECT_GT(cv::norm(views[0], views[1], cv::NORM_L1), 0.0);
 }
 
+TEST_F(Cli, RejectsASecondOutputInAMissingFolderBeforeMatching) {
+  const std::string bad_raw = (dir_ / "no_such_dir" / "raw_right.pfm").string();
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ +
+                                  " --raw-right " + bad_raw + " --ndisp 16" + quick(),
+                              dir_);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find(bad_raw), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(output_));  // nothing written: the check comes first
+}
+
 TEST_F(Cli, RejectsAnUnknownDevice) {
   expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --device bogus",
                   "--device");

@@ -1,5 +1,6 @@
 #include "host/cli/arguments.h"
 
+#include <cstring>
 #include <functional>
 #include <sstream>
 
@@ -181,11 +182,12 @@ std::string stereo_params_help() {
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
     // A name too long for the column gets its help on the next line, as --device's does.
-    const size_t width = std::string(option.name).size();
-    if (width >= 22) {
-      out << "\n" << std::string(32, ' ');
+    constexpr size_t kNameColumn = 22;
+    const size_t name_width = std::string(option.name).size();
+    if (name_width >= kNameColumn) {
+      out << "\n" << std::string(std::strlen("  --") + kNameColumn + std::strlen(" VALUE"), ' ');
     } else {
-      for (size_t pad = width; pad < 22; ++pad) out << ' ';
+      out << std::string(kNameColumn - name_width, ' ');
     }
     out << option.help << "\n";
   }

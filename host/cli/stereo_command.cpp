@@ -192,11 +192,21 @@ int run_stereo_command(std::vector<std::string> args) {
   if (!quiet) progress = [](const std::string& stage) { std::cerr << "  " << stage << "\n"; };
   validate_inputs(pair.left, pair.right, params);  // before the kernels are built
   check_cloud_outputs(cloud_options, pair.left.cols, pair.left.rows);
-  if (opencv && (!raw.empty() || !raw_right.empty() || !planes.empty() || !conf.empty() || !conf_png.empty() ||
-                 backend_options.profile)) {
+  if (opencv && (!raw.empty() || !raw_right.empty() || !planes.empty() || !conf.empty() ||
+                 !conf_png.empty() || backend_options.profile)) {
     throw InputError("option --method", std::string(opencv_matcher_name(*opencv)) +
-                                            " gives a disparity only: no --raw, --raw-right, --planes, "
-                                            "--conf, --conf-png or --profile");
+                                            " gives a disparity only: no --raw, --raw-right, "
+                                            "--planes, --conf, --conf-png or --profile");
+  }
+  // Every output's folder is checked before the matching, so that a mistyped path fails
+  // in a second, not after the run with some of the outputs written.
+  for (const std::string& path : {output, png, raw, raw_right, planes, conf, conf_png,
+                                  cloud_options.ply, cloud_options.depth, cloud_options.render}) {
+    if (path.empty()) continue;
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+      throw InputError(path, "cannot be written: its folder does not exist");
+    }
   }
   std::string used;
   StereoResult result;
