@@ -57,6 +57,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
     plan.iterations = params.iterations;
   } else {
     plan.iterations = plan.coarsest ? params.iterations_coarsest : params.iterations_fine;
+    if (level == 0 && !plan.coarsest) plan.cost.step = params.window_step_finest;
   }
 
   // Half the level's disparity range at first; below the coarsest level the carried

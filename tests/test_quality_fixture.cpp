@@ -31,9 +31,12 @@ SceneScores score_fixture(StereoMethod method) {
 // background margin (2 px), PPMS's filling of the coarser levels and its 16-px fine
 // search. The margin costs flat PMS on this small crop (4.19 -> 4.63 %) while it gains
 // on the 15 full scenes. 2026-11-30: the 2-px limit of the filled disparity's
-// extrapolation leaves PPMS here as it was and takes PMS to 4.54 %.
-constexpr double kRecordedPpmsBad2All = 3.86;
-constexpr double kRecordedPpmsBad2Nonocc = 1.74;
+// extrapolation leaves PPMS here as it was and takes PMS to 4.54 %. Later that day: the
+// finest level's window step of 3 costs PPMS on this half-size crop 3.86 -> 4.24 %
+// (nonocc 1.74 -> 1.76); on the 15 quarter-resolution scenes it changes nothing
+// (12.12 -> 12.11 %) in 0.6x the time.
+constexpr double kRecordedPpmsBad2All = 4.24;
+constexpr double kRecordedPpmsBad2Nonocc = 1.76;
 constexpr double kRecordedPmsBad2All = 4.54;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 

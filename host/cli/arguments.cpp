@@ -64,6 +64,8 @@ const std::vector<ParamOption>& param_options() {
       integer_option("ndisp", "disparity range [0, ndisp - 1]", &StereoParams::ndisp),
       integer_option("window", "support window side (odd)", &StereoParams::window),
       integer_option("window-step", "sample every n-th window row/column", &StereoParams::window_step),
+      integer_option("window-step-finest", "PPMS: window step on the finest level",
+                     &StereoParams::window_step_finest),
       float_option("alpha", "weight of the gradient term", &StereoParams::alpha),
       float_option("tau-color", "colour truncation", &StereoParams::tau_color),
       float_option("tau-gradient", "gradient truncation", &StereoParams::tau_gradient),

@@ -22,6 +22,7 @@ struct PipelineCase {
   int fill_coarse = 1;
   float median_background_margin = 2.0f;
   float fill_max_extrapolation = 2.0f;
+  int window_step_finest = 3;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -54,6 +55,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.fill_coarse = c.fill_coarse;
   params.median_background_margin = c.median_background_margin;
   params.fill_max_extrapolation = c.fill_max_extrapolation;
+  params.window_step_finest = c.window_step_finest;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -115,7 +117,9 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_no_coarse_fill_every_vote", StereoMethod::PPMS, 11,
                                    11, 32, 0, INFINITY},
                       PipelineCase{"ppms_w11_plain_extrapolation", StereoMethod::PPMS, 11, 11, 32,
-                                   1, 2.0f, INFINITY}),
+                                   1, 2.0f, INFINITY},
+                      PipelineCase{"ppms_w11_one_window_step", StereoMethod::PPMS, 11, 11, 32,
+                                   1, 2.0f, 2.0f, 2}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
