@@ -305,6 +305,9 @@ def main():
          a["ppms-opencl"]["bad"]["2"] - a["pms-opencl"]["bad"]["2"] if "pms-opencl" in a else None, " pt"),
     ]
 
+    reference_seconds = s.get("ppms-reference", {}).get("seconds")
+    reference_note = ("it is the slow path" if reference_seconds is None else
+                      f"PPMS took {reference_seconds:.1f} s per scene there in this run, on 2 cores")
     text = ["# Benchmark report: FlexSight PPMS/PMS against OpenCV's matchers", "",
             "Produced by one run of", "",
             "```sh",
@@ -321,7 +324,7 @@ def main():
             f"(images in memory; no file I/O), the median of {args.repeat} runs per scene for PPMS "
             "(OpenCL) and OpenCV's matchers, one run otherwise. The table's 'median' column is the "
             "median over scenes.",
-            f"- The reference C++ path runs on {', '.join(subset)} only (about 40 s per scene on 2 cores).",
+            f"- The reference C++ path runs on {', '.join(subset)} only ({reference_note}).",
             "- The same PatchMatch parameters for every run (the defaults of `fallback/stereo_params.h`). "
             "OpenCV: " + "StereoSGBM MODE_SGBM_3WAY, block 5, P1 8*3*25, P2 32*3*25, uniqueness 10, "
             "speckle 100/2; StereoBM block 9 with the settings of OpenCV's stereo_match sample "
