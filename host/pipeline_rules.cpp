@@ -57,6 +57,8 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
     plan.iterations = params.iterations;
   } else {
     plan.iterations = plan.coarsest ? params.iterations_coarsest : params.iterations_fine;
+    // The finest level only refines carried planes, and takes most of the time: a
+    // sparser window there costs no accuracy (StereoParams::window_step_finest).
     if (level == 0 && !plan.coarsest) plan.cost.step = params.window_step_finest;
   }
 
