@@ -20,8 +20,8 @@ void StereoParams::check() const {
           "must be odd and in 1..101, got " + std::to_string(window));
   require(window_step >= 1 && window_step <= window, "window-step",
           "must be in 1..window, got " + std::to_string(window_step));
-  require(window_step_finest >= 1 && window_step_finest <= window, "window-step-finest",
-          "must be in 1..window, got " + std::to_string(window_step_finest));
+  require(window_step_fine >= 1 && window_step_fine <= window, "window-step-fine",
+          "must be in 1..window, got " + std::to_string(window_step_fine));
   require(std::isfinite(alpha) && alpha >= 0 && alpha <= 1, "alpha", "must be in [0, 1]");
   require(std::isfinite(tau_color) && tau_color > 0, "tau-color", "must be positive");
   require(std::isfinite(tau_gradient) && tau_gradient > 0, "tau-gradient", "must be positive");

@@ -19,13 +19,15 @@ struct StereoParams {
   // Only every step-th row and column of the window is summed; 2 keeps accuracy and
   // divides the cost of a matching evaluation by four.
   int window_step = 2;
-  // PPMS: the window step on the finest level (when there are several), where the
-  // planes come carried from the level above and only need refining; the other levels
-  // and flat PMS use window_step. The finest level took 70 % of the time, and a step of
-  // 3 samples 121 window pixels instead of 289. 15 MiddEval3 Q scenes, OpenCL, bad-2
-  // all, seeds 1 / 2: step 2 12.12 / 11.98 %, 3 12.11 / 11.98 % in about 0.6x the time;
-  // 4 gave 12.30 (seed 1); 3 on every level below the coarsest 12.09 / 12.18.
-  int window_step_finest = 3;
+  // PPMS: the window step on every level below the coarsest, whose planes come carried
+  // from the level above and only need refining; the coarsest level (which starts from
+  // random planes) and flat PMS use window_step. Those levels took 90 % of the time, and
+  // a step of 3 samples 121 window pixels instead of 289. 15 MiddEval3 Q scenes, OpenCL,
+  // bad-2 all, seeds 1 / 2 / 3: step 2 everywhere 12.12 / 11.98 / -, step 3 on the
+  // finest level only 12.11 / 11.98 / 11.99 %, step 3 below the coarsest 12.09 / 12.18 /
+  // 11.96 % (mean 12.08 against 12.03, under the seed spread) in 0.75x the time of the
+  // finest-only variant; step 4 on the finest level gave 12.30 (seed 1).
+  int window_step_fine = 3;
   // Weight of the gradient term against the colour term in the matching cost.
   float alpha = 0.9f;
   // Truncation of the colour (L1 over RGB) and gradient dissimilarities.

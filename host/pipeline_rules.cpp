@@ -57,9 +57,10 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
     plan.iterations = params.iterations;
   } else {
     plan.iterations = plan.coarsest ? params.iterations_coarsest : params.iterations_fine;
-    // The finest level only refines carried planes, and takes most of the time: a
-    // sparser window there costs no accuracy (StereoParams::window_step_finest).
-    if (level == 0 && !plan.coarsest) plan.cost.step = params.window_step_finest;
+    // Below the coarsest level the planes come carried from the level above and only
+    // need refining: a sparser window there costs no accuracy beyond the seed spread
+    // and most of the time goes there (StereoParams::window_step_fine).
+    if (!plan.coarsest) plan.cost.step = params.window_step_fine;
   }
 
   // Half the level's disparity range at first; below the coarsest level the carried

@@ -135,8 +135,8 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --ndisp -5", "--ndisp");
   expect_rejected(pair + " --ndisp 65", "--ndisp");  // wider than the 64-px image
   expect_rejected(pair + " --window 8", "--window");
-  expect_rejected(pair + " --window-step-finest 0", "--window-step-finest");
-  expect_rejected(pair + " --window 7 --window-step-finest 9", "--window-step-finest");
+  expect_rejected(pair + " --window-step-fine 0", "--window-step-fine");
+  expect_rejected(pair + " --window 7 --window-step-fine 9", "--window-step-fine");
   expect_rejected(pair + " --alpha 1.5", "--alpha");
   expect_rejected(pair + " --ndisp twelve", "--ndisp");
 }

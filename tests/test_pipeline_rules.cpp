@@ -53,12 +53,12 @@ TEST(PlanLevel, BelowTheCoarsestLevelTheSearchStartsAtTheFineRange) {
   EXPECT_EQ(plan_level(params, 0, 3, 100, 80).name, "level 0 (100x80)");
 }
 
-TEST(PlanLevel, OnlyTheFinestOfSeveralLevelsTakesTheFinestWindowStep) {
+TEST(PlanLevel, EveryLevelBelowTheCoarsestTakesTheFineWindowStep) {
   StereoParams params;
   params.window_step = 2;
-  params.window_step_finest = 3;
+  params.window_step_fine = 3;
   EXPECT_EQ(plan_level(params, 2, 3, 25, 20).cost.step, 2);  // coarsest: random planes
-  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).cost.step, 2);
+  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).cost.step, 3);
   EXPECT_EQ(plan_level(params, 0, 3, 100, 80).cost.step, 3);
   EXPECT_EQ(plan_level(params, 0, 1, 100, 80).cost.step, 2);  // a single level is the coarsest
   params.method = StereoMethod::PMS;

@@ -22,7 +22,7 @@ struct PipelineCase {
   int fill_coarse = 1;
   float median_background_margin = 2.0f;
   float fill_max_extrapolation = 2.0f;
-  int window_step_finest = 3;
+  int window_step_fine = 3;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -55,7 +55,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.fill_coarse = c.fill_coarse;
   params.median_background_margin = c.median_background_margin;
   params.fill_max_extrapolation = c.fill_max_extrapolation;
-  params.window_step_finest = c.window_step_finest;
+  params.window_step_fine = c.window_step_fine;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
