@@ -1,6 +1,8 @@
 /* Pyramid levels on the device (fallback/image_pyramid.cpp): the host uploads the
  * level-0 colour, downsample_color makes each coarser colour, and compute_gradient
- * follows as a second launch because it reads the neighbours' colours. */
+ * follows as a second launch because it reads the neighbours' colours. Before a level's
+ * PatchMatch, pack_match_samples lays each view out for the cost kernels' reads of it
+ * as the other view (a device-only layout, no reference counterpart). */
 #include "pms_kernel_support.h"
 
 /* Coarse pixel (x, y) of the next level: 2x2 box average with rounding. */
@@ -19,4 +21,18 @@ __kernel void compute_gradient(__global float* color, int width, int height,
   if (!pms_dense_pixel(width, height, &x, &y)) return;
   pms_gradient_pixel(color, width, height, x, y, gradient + 2 * (y * width + x));
   color[4 * (y * width + x) + 3] = pms_census_pixel(color, width, height, x, y);
+}
+
+/* Match record (pms_match_record) of pixel (x, y). The buffer holds PMS_MATCH_RECORD
+ * floats per pixel and 4 more, which the last pixel zeroes: the cost kernels load 16
+ * floats from each record's start. */
+__kernel void pack_match_samples(const __global float* color, const __global float* gradient,
+                                 int width, int height, __global float* match) {
+  int x, y;
+  if (!pms_dense_pixel(width, height, &x, &y)) return;
+  pms_match_record(color, gradient, width, x, y, match + PMS_MATCH_RECORD * (y * width + x));
+  if (x == width - 1 && y == height - 1) {
+    __global float* tail = match + PMS_MATCH_RECORD * width * height;
+    tail[0] = tail[1] = tail[2] = tail[3] = 0.0f;
+  }
 }

@@ -14,19 +14,18 @@
 
 /* The leading arguments of every kernel that evaluates matching costs, in the order the
  * host sets them (OpenClStages::set_cost_args): the view's images, the other view's
- * images, the weight table, the level size, the cost parameters and the view. */
+ * match records (pack_match_samples), the weight table, the level size, the cost
+ * parameters and the view. */
 #define PMS_COST_KERNEL_ARGS                                                             \
   const __global float *ref_color, const __global float *ref_grad,                       \
-      const __global float *other_color, const __global float *other_grad,               \
-      const __global float *weights, int width, int height, PmsCostParams cost_params,   \
-      int view
+      const __global float *other_match, const __global float *weights, int width,       \
+      int height, PmsCostParams cost_params, int view
 
-/* Everything pms_plane_cost needs besides the pixel and the plane. */
+/* Everything pms_cost_lanes needs besides the pixels and the planes. */
 typedef struct {
   const __global float* ref_color;
   const __global float* ref_grad;
-  const __global float* other_color;
-  const __global float* other_grad;
+  const __global float* other_match;
   const __global float* weights;
   int width;
   int height;
@@ -35,14 +34,8 @@ typedef struct {
 } PmsCostInputs;
 
 #define PMS_COST_INPUTS()                                                                \
-  {ref_color, ref_grad, other_color, other_grad, weights, width, height, cost_params,    \
+  {ref_color, ref_grad, other_match, weights, width, height, cost_params,                 \
    view == PMS_VIEW_LEFT ? -1.0f : 1.0f}
-
-inline float pms_cost_at(const PmsCostInputs* in, int x, int y, const float* abc, float bound) {
-  return pms_plane_cost(in->ref_color, in->ref_grad, in->other_color, in->other_grad,
-                        in->weights, in->width, in->height, in->params, x, y, abc[0], abc[1],
-                        abc[2], in->direction, bound);
-}
 
 /* Pixel of a work item of a checkerboard stage: the global size is (ceil(width / 2),
  * height) and item (i, y) handles x = 2 i + (y + colour) % 2, the reference's loop.
@@ -203,6 +196,100 @@ inline int pms_dense_lanes(int width, int height, PmsLanes* lanes, int* y) {
   return 1;
 }
 
+/* ------------------------------------------------- the other view's match records
+ *
+ * The cost interpolates the other view at a data-dependent x0 per lane, which made
+ * every window sample a dozen gathers (three colours and two gradients at x0 and
+ * x0 + 1, and a census). pack_match_samples (build_view.cl) stores per pixel one record
+ * of PMS_MATCH_RECORD floats with everything a sample needs there, so each lane loads
+ * its record with one vector load and a transpose turns the lanes' records into one
+ * vector per field. The steps m1 - m0 are computed once there with the same float
+ * subtraction pms_plane_cost performs, so the sums keep their bits. */
+typedef struct {
+  pms_floatv r, g, b, census0, dr, dg, db, census1, gx, gy, dgx, dgy;
+} PmsMatchSamples;
+
+#if PMS_LANES == 8
+/* Lane l gets the fields of record x0[l]. Three rounds of two-source shuffles (24 in
+ * all, which LLVM lowers to permutes) transpose the 8 lanes x 16 floats. */
+inline void pms_load_match_samples(const __global float* match_row, int8 x0,
+                                   PmsMatchSamples* m) {
+  const float16 v0 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s0);
+  const float16 v1 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s1);
+  const float16 v2 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s2);
+  const float16 v3 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s3);
+  const float16 v4 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s4);
+  const float16 v5 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s5);
+  const float16 v6 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s6);
+  const float16 v7 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s7);
+  /* Round 1: p<i><s>[2 m + j] = lane (2 i + j), field (2 m + s). */
+#define PMS_EVEN2(a, b) (float16)(a.s0, b.s0, a.s2, b.s2, a.s4, b.s4, a.s6, b.s6, \
+                                  a.s8, b.s8, a.sa, b.sa, a.sc, b.sc, a.se, b.se)
+#define PMS_ODD2(a, b) (float16)(a.s1, b.s1, a.s3, b.s3, a.s5, b.s5, a.s7, b.s7, \
+                                 a.s9, b.s9, a.sb, b.sb, a.sd, b.sd, a.sf, b.sf)
+  const float16 p00 = PMS_EVEN2(v0, v1), p01 = PMS_ODD2(v0, v1);
+  const float16 p10 = PMS_EVEN2(v2, v3), p11 = PMS_ODD2(v2, v3);
+  const float16 p20 = PMS_EVEN2(v4, v5), p21 = PMS_ODD2(v4, v5);
+  const float16 p30 = PMS_EVEN2(v6, v7), p31 = PMS_ODD2(v6, v7);
+  /* Round 2: q<h><s><u>[4 m + j] = lane (4 h + j), field (4 m + 2 u + s). */
+#define PMS_PAIRS_U0(a, b) (float16)(a.s01, b.s01, a.s45, b.s45, a.s89, b.s89, a.scd, b.scd)
+#define PMS_PAIRS_U1(a, b) (float16)(a.s23, b.s23, a.s67, b.s67, a.sab, b.sab, a.sef, b.sef)
+  const float16 q000 = PMS_PAIRS_U0(p00, p10), q001 = PMS_PAIRS_U1(p00, p10);
+  const float16 q010 = PMS_PAIRS_U0(p01, p11), q011 = PMS_PAIRS_U1(p01, p11);
+  const float16 q100 = PMS_PAIRS_U0(p20, p30), q101 = PMS_PAIRS_U1(p20, p30);
+  const float16 q110 = PMS_PAIRS_U0(p21, p31), q111 = PMS_PAIRS_U1(p21, p31);
+  /* Round 3: field k = 4 w + 2 u + s of every lane in .lo, field k + 8 in .hi. */
+#define PMS_QUADS_W0(a, b) (float16)(a.s0123, b.s0123, a.s89ab, b.s89ab)
+#define PMS_QUADS_W1(a, b) (float16)(a.s4567, b.s4567, a.scdef, b.scdef)
+  const float16 f0 = PMS_QUADS_W0(q000, q100); /* s 0, u 0, w 0: fields 0 and 8 */
+  const float16 f1 = PMS_QUADS_W0(q010, q110); /* fields 1 and 9 */
+  const float16 f2 = PMS_QUADS_W0(q001, q101); /* fields 2 and 10 */
+  const float16 f3 = PMS_QUADS_W0(q011, q111); /* fields 3 and 11 */
+  const float16 f4 = PMS_QUADS_W1(q000, q100); /* fields 4 and 12 */
+  const float16 f5 = PMS_QUADS_W1(q010, q110);
+  const float16 f6 = PMS_QUADS_W1(q001, q101);
+  const float16 f7 = PMS_QUADS_W1(q011, q111);
+#undef PMS_EVEN2
+#undef PMS_ODD2
+#undef PMS_PAIRS_U0
+#undef PMS_PAIRS_U1
+#undef PMS_QUADS_W0
+#undef PMS_QUADS_W1
+  m->r = f0.lo;
+  m->g = f1.lo;
+  m->b = f2.lo;
+  m->census0 = f3.lo;
+  m->dr = f4.lo;
+  m->dg = f5.lo;
+  m->db = f6.lo;
+  m->census1 = f7.lo;
+  m->gx = f0.hi;
+  m->gy = f1.hi;
+  m->dgx = f2.hi;
+  m->dgy = f3.hi;
+}
+#else
+inline void pms_load_match_samples(const __global float* match_row, pms_intv x0,
+                                   PmsMatchSamples* m) {
+  float f[PMS_MATCH_RECORD][PMS_LANES];
+  for (int l = 0; l < PMS_LANES; ++l) {
+    for (int k = 0; k < PMS_MATCH_RECORD; ++k) f[k][l] = match_row[PMS_MATCH_RECORD * x0[l] + k];
+  }
+  m->r = PMS_VLOAD(0, f[0]);
+  m->g = PMS_VLOAD(0, f[1]);
+  m->b = PMS_VLOAD(0, f[2]);
+  m->census0 = PMS_VLOAD(0, f[3]);
+  m->dr = PMS_VLOAD(0, f[4]);
+  m->dg = PMS_VLOAD(0, f[5]);
+  m->db = PMS_VLOAD(0, f[6]);
+  m->census1 = PMS_VLOAD(0, f[7]);
+  m->gx = PMS_VLOAD(0, f[8]);
+  m->gy = PMS_VLOAD(0, f[9]);
+  m->dgx = PMS_VLOAD(0, f[10]);
+  m->dgy = PMS_VLOAD(0, f[11]);
+}
+#endif
+
 /* pms_plane_cost of plane (a[l], b[l], c[l]) at (x[l], py) for every lane, within the
  * early-exit rule above. Lanes with bound[l] <= 0 are ignored (pass 0 for unused). */
 inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes, int py,
@@ -256,8 +343,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
     const pms_floatv row_term = b * (float)qy;
     const __global float* ref_row = in->ref_color + 4 * qy * width;
     const __global float* ref_grad_row = in->ref_grad + 2 * qy * width;
-    const __global float* other_row = in->other_color + 4 * qy * width;
-    const __global float* other_grad_row = in->other_grad + 2 * qy * width;
+    const __global float* match_row = in->other_match + PMS_MATCH_RECORD * qy * width;
     for (int dx = x_begin; dx <= radius; dx += step) {
       const pms_intv qx = px + dx;
       const pms_intv inside = (qx >= 0) & (qx < width);
@@ -270,14 +356,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
       const pms_floatv x0f = floor(match_x);
       const pms_intv x0 = PMS_TO_INTV(x0f);
       const pms_floatv t = match_x - x0f;
-      float q0[PMS_LANES], q1[PMS_LANES], q2[PMS_LANES], gq0[PMS_LANES], gq1[PMS_LANES];
-      float m00[PMS_LANES], m01[PMS_LANES], m02[PMS_LANES];
-      float m10[PMS_LANES], m11[PMS_LANES], m12[PMS_LANES];
-      float g00[PMS_LANES], g01[PMS_LANES], g10[PMS_LANES], g11[PMS_LANES];
-      float w[PMS_LANES];
-      float q3[PMS_LANES], mn3[PMS_LANES];
-      pms_floatv Q0, Q1, Q2, Q3, MN3, G0, G1, W;
-      pms_floatv M00, M01, M02, M10, M11, M12, G00, G01, G10, G11;
+      pms_floatv Q0, Q1, Q2, Q3, G0, G1, W;
 #if PMS_LANES == 8
       if (fast) {
         /* Lane l's sample is pixel first_qx + 2 l: every other pixel of 15. The loads
@@ -300,84 +379,48 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         /* pms_color_l1(centre, q), lane by lane */
         const int8 wi = convert_int8(fabs(cr - Q0) + fabs(cg - Q1) + fabs(cb - Q2));
         W = PMS_GATHER8(weights, wi);
-        /* The other view at x0 and x1 = min(x0 + 1, width - 1), lane by lane. */
-        const int8 i0 = x0;
-        const int8 i1 = select(i0, i0 + 1, i0 + 1 < width);
-        const int8 c0i = 4 * i0, c1i = 4 * i1, g0i = 2 * i0, g1i = 2 * i1;
-        M00 = PMS_GATHER8(other_row, c0i);
-        M01 = PMS_GATHER8(other_row + 1, c0i);
-        M02 = PMS_GATHER8(other_row + 2, c0i);
-        M10 = PMS_GATHER8(other_row, c1i);
-        M11 = PMS_GATHER8(other_row + 1, c1i);
-        M12 = PMS_GATHER8(other_row + 2, c1i);
-        G00 = PMS_GATHER8(other_grad_row, g0i);
-        G01 = PMS_GATHER8(other_grad_row + 1, g0i);
-        G10 = PMS_GATHER8(other_grad_row, g1i);
-        G11 = PMS_GATHER8(other_grad_row + 1, g1i);
-        const int8 cni = select(c0i, c1i, isless(t, 0.5f) == 0);
-        MN3 = PMS_GATHER8(other_row + 3, cni);
       } else
 #endif
       {
+        float q0[PMS_LANES], q1[PMS_LANES], q2[PMS_LANES], q3[PMS_LANES];
+        float gq0[PMS_LANES], gq1[PMS_LANES], w[PMS_LANES];
 #pragma unroll
-      for (int l = 0; l < PMS_LANES; ++l) {
-        int sx = x[l] + dx;
-        sx = sx < 0 ? 0 : (sx > width - 1 ? width - 1 : sx); /* outside lanes: any pixel */
-        const int i0 = x0[l];
-        const int i1 = i0 + 1 < width ? i0 + 1 : i0;
-        const __global float* q = ref_row + 4 * sx;
-        const __global float* g = ref_grad_row + 2 * sx;
-        const __global float* m0 = other_row + 4 * i0;
-        const __global float* m1 = other_row + 4 * i1;
-        const __global float* h0 = other_grad_row + 2 * i0;
-        const __global float* h1 = other_grad_row + 2 * i1;
-        q0[l] = q[0];
-        q1[l] = q[1];
-        q2[l] = q[2];
-        q3[l] = q[3];
-        mn3[l] = t[l] < 0.5f ? m0[3] : m1[3];
-        gq0[l] = g[0];
-        gq1[l] = g[1];
-        m00[l] = m0[0];
-        m01[l] = m0[1];
-        m02[l] = m0[2];
-        m10[l] = m1[0];
-        m11[l] = m1[1];
-        m12[l] = m1[2];
-        g00[l] = h0[0];
-        g01[l] = h0[1];
-        g10[l] = h1[0];
-        g11[l] = h1[1];
-        /* pms_color_l1(centre, q) */
-        w[l] = weights[(int)(fabs(centre_r[l] - q[0]) + fabs(centre_g[l] - q[1]) +
-                             fabs(centre_b[l] - q[2]))];
+        for (int l = 0; l < PMS_LANES; ++l) {
+          int sx = x[l] + dx;
+          sx = sx < 0 ? 0 : (sx > width - 1 ? width - 1 : sx); /* outside lanes: any pixel */
+          const __global float* q = ref_row + 4 * sx;
+          const __global float* g = ref_grad_row + 2 * sx;
+          q0[l] = q[0];
+          q1[l] = q[1];
+          q2[l] = q[2];
+          q3[l] = q[3];
+          gq0[l] = g[0];
+          gq1[l] = g[1];
+          /* pms_color_l1(centre, q) */
+          w[l] = weights[(int)(fabs(centre_r[l] - q[0]) + fabs(centre_g[l] - q[1]) +
+                               fabs(centre_b[l] - q[2]))];
+        }
+        Q0 = PMS_VLOAD(0, q0);
+        Q1 = PMS_VLOAD(0, q1);
+        Q2 = PMS_VLOAD(0, q2);
+        Q3 = PMS_VLOAD(0, q3);
+        G0 = PMS_VLOAD(0, gq0);
+        G1 = PMS_VLOAD(0, gq1);
+        W = PMS_VLOAD(0, w);
       }
-      Q0 = PMS_VLOAD(0, q0);
-      Q1 = PMS_VLOAD(0, q1);
-      Q2 = PMS_VLOAD(0, q2);
-      Q3 = PMS_VLOAD(0, q3);
-      MN3 = PMS_VLOAD(0, mn3);
-      G0 = PMS_VLOAD(0, gq0);
-      G1 = PMS_VLOAD(0, gq1);
-      W = PMS_VLOAD(0, w);
-      M00 = PMS_VLOAD(0, m00);
-      M01 = PMS_VLOAD(0, m01);
-      M02 = PMS_VLOAD(0, m02);
-      M10 = PMS_VLOAD(0, m10);
-      M11 = PMS_VLOAD(0, m11);
-      M12 = PMS_VLOAD(0, m12);
-      G00 = PMS_VLOAD(0, g00);
-      G01 = PMS_VLOAD(0, g01);
-      G10 = PMS_VLOAD(0, g10);
-      G11 = PMS_VLOAD(0, g11);
-      }
-      const pms_floatv color_diff = fabs(Q0 - (M00 + t * (M10 - M00))) +
-                                    fabs(Q1 - (M01 + t * (M11 - M01))) +
-                                    fabs(Q2 - (M02 + t * (M12 - M02)));
+      /* The other view at x0 (x0 is clamped into the row, so every lane's record
+       * exists): values there and the steps to x1 = min(x0 + 1, width - 1). */
+      PmsMatchSamples m;
+      pms_load_match_samples(match_row, x0, &m);
+      /* m0 + t * (m1 - m0) of pms_plane_cost, with m1 - m0 precomputed bit for bit. */
+      const pms_floatv color_diff = fabs(Q0 - (m.r + t * m.dr)) +
+                                    fabs(Q1 - (m.g + t * m.dg)) +
+                                    fabs(Q2 - (m.b + t * m.db));
       const pms_floatv grad_diff =
-          fabs(G0 - (G00 + t * (G10 - G00))) + fabs(G1 - (G01 + t * (G11 - G01)));
+          fabs(G0 - (m.gx + t * m.dgx)) + fabs(G1 - (m.gy + t * m.dgy));
+      const pms_floatv nearest_census = select(m.census1, m.census0, isless(t, 0.5f));
       const pms_floatv census =
-          PMS_TO_FLOATV(popcount(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(MN3)));
+          PMS_TO_FLOATV(popcount(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
       const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
                                        alpha * fmin(grad_diff, tau_gradient) +
                                        census_weight * census;

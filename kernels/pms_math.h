@@ -379,4 +379,30 @@ PMS_INLINE void pms_gradient_pixel(const PMS_GLOBAL float* color, int width, int
   out[1] = (pms_grey3(color, yd * width + x) - pms_grey3(color, yu * width + x)) * scale;
 }
 
+/* The other view's samples of pms_plane_cost at pixel (x, y) as one record, for the
+ * OpenCL path's vector loads (pms_load_match_samples in pms_kernel_support.h): with
+ * x1 = min(x + 1, width - 1), the colour at x, its census, the colour steps to x1, the
+ * census at x1, the gradient at x and its steps to x1. Each step is the m1 - m0 that
+ * pms_plane_cost computes, so m0 + t * step has the same bits. */
+#define PMS_MATCH_RECORD 12
+PMS_INLINE void pms_match_record(const PMS_GLOBAL float* color, const PMS_GLOBAL float* grad,
+                                 int width, int x, int y, PMS_GLOBAL float* out) {
+  const PMS_GLOBAL float* c0 = color + 4 * (y * width + x);
+  const PMS_GLOBAL float* c1 = color + 4 * (y * width + (x + 1 < width ? x + 1 : x));
+  const PMS_GLOBAL float* g0 = grad + 2 * (y * width + x);
+  const PMS_GLOBAL float* g1 = grad + 2 * (y * width + (x + 1 < width ? x + 1 : x));
+  out[0] = c0[0];
+  out[1] = c0[1];
+  out[2] = c0[2];
+  out[3] = c0[3];
+  out[4] = c1[0] - c0[0];
+  out[5] = c1[1] - c0[1];
+  out[6] = c1[2] - c0[2];
+  out[7] = c1[3];
+  out[8] = g0[0];
+  out[9] = g0[1];
+  out[10] = g1[0] - g0[0];
+  out[11] = g1[1] - g0[1];
+}
+
 #endif /* FLEXSIGHT_PMS_MATH_H */

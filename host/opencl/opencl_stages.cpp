@@ -43,6 +43,10 @@ void require_level(const DeviceLevel& in, const DeviceField& field, const char* 
       throw std::invalid_argument(std::string(stage) + ": views and field differ in size");
     }
   }
+  for (const Buffer<float>* match : in.match) {
+    if (match == nullptr) throw std::invalid_argument(std::string(stage) + ": no match records");
+    require_size(*match, static_cast<long long>(match_record_floats(field.pixels())), stage);
+  }
   require_size(*in.weights, PMS_WEIGHT_TABLE_SIZE, stage);
   require_field(field, stage);
 }
@@ -53,6 +57,7 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler)
     : context_(context), profiler_(profiler),
       downsample_color_(make_kernel(src::build_view, "downsample_color")),
       compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
+      pack_match_samples_(make_kernel(src::build_view, "pack_match_samples")),
       init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes", kLanesOption)),
       evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs", kLanesOption)),
       propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial", kLanesOption)),
@@ -74,8 +79,7 @@ template <typename... Rest>
 void OpenClStages::set_cost_args(Kernel& kernel, const DeviceLevel& in, int view,
                                  const Rest&... rest) {
   const DeviceView& ref = *in.views[view];
-  const DeviceView& other = *in.views[1 - view];
-  kernel.set_args(ref.color, ref.gradient, other.color, other.gradient, *in.weights, ref.width,
+  kernel.set_args(ref.color, ref.gradient, *in.match[1 - view], *in.weights, ref.width,
                   ref.height, in.cost, view, rest...);
 }
 
@@ -106,6 +110,14 @@ void OpenClStages::compute_gradient(DeviceView& view) {
   require_view(view, "compute_gradient");
   compute_gradient_.set_args(view.color, view.width, view.height, view.gradient);
   launch(compute_gradient_, view.width, view.height);
+}
+
+void OpenClStages::pack_match_samples(const DeviceView& view, Buffer<float>& match) {
+  require_view(view, "pack_match_samples");
+  require_size(match, static_cast<long long>(match_record_floats(view.pixels())),
+               "pack_match_samples");
+  pack_match_samples_.set_args(view.color, view.gradient, view.width, view.height, match);
+  launch(pack_match_samples_, view.width, view.height);
 }
 
 void OpenClStages::init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,

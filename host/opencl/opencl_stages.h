@@ -25,6 +25,9 @@ class OpenClStages {
   // fallback/image_pyramid.cpp: downsample's colour part, then compute_gradient.
   void downsample_color(const DeviceView& fine, DeviceView& coarse);
   void compute_gradient(DeviceView& view);
+  // The view's match records (match_record_floats of its pixels), which the cost
+  // kernels read when it is the other view; no reference counterpart.
+  void pack_match_samples(const DeviceView& view, Buffer<float>& match);
 
   // fallback/patchmatch_reference.cpp. `field` (and `fine`) must have their size set.
   void init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,
@@ -71,7 +74,7 @@ class OpenClStages {
 
   Context& context_;
   KernelProfiler* profiler_;
-  Kernel downsample_color_, compute_gradient_, init_random_planes_, evaluate_costs_,
+  Kernel downsample_color_, compute_gradient_, pack_match_samples_, init_random_planes_, evaluate_costs_,
       propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,
       fill_inconsistent_;

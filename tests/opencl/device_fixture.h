@@ -90,6 +90,7 @@ inline DeviceField upload(const PlaneField& field, const std::string& what) {
 // A case's ReferenceLevel with its images and weight table on the device as well.
 struct LevelFixture : ReferenceLevel {
   DeviceView device_images[2];
+  Buffer<float> device_match[2];
   Buffer<float> device_weights;
   DeviceLevel device_in;
 
@@ -97,6 +98,11 @@ struct LevelFixture : ReferenceLevel {
     for (int view = 0; view < 2; ++view) {
       device_images[view] = upload(images[view], view == 0 ? "left" : "right");
       device_in.views[view] = &device_images[view];
+      device_match[view] = guarded_output<float>(
+          match_record_floats(device_images[view].pixels()),
+          view == 0 ? "left match records" : "right match records");
+      stages().pack_match_samples(device_images[view], device_match[view]);
+      device_in.match[view] = &device_match[view];
     }
     device_weights = guarded(weights, "weights");
     device_in.weights = &device_weights;
