@@ -212,8 +212,10 @@ typedef struct {
 #if PMS_LANES == 8
 /* Lane l gets the fields of record x0[l]. Three rounds of two-source shuffles (24 in
  * all, which LLVM lowers to permutes) transpose the 8 lanes x 16 floats. */
-inline void pms_load_match_samples(const __global float* match_row, int8 x0,
-                                   PmsMatchSamples* m) {
+/* Always inlined: called, its results went through the stack and the first read of
+ * them stalled. */
+__attribute__((always_inline)) inline void pms_load_match_samples(
+    const __global float* match_row, int8 x0, PmsMatchSamples* m) {
   const float16 v0 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s0);
   const float16 v1 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s1);
   const float16 v2 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s2);
@@ -289,6 +291,23 @@ inline void pms_load_match_samples(const __global float* match_row, pms_intv x0,
   m->dgy = PMS_VLOAD(0, f[11]);
 }
 #endif
+
+/* popcount of every lane in vector operations: PoCL's CPU target (skylake-avx512 here)
+ * has no vector popcount instruction and splits popcount() into one scalar popcnt per
+ * lane. The classic bit-parallel count; integers, so exact. */
+#if PMS_LANES == 4
+typedef uint4 pms_uintv;
+#elif PMS_LANES == 8
+typedef uint8 pms_uintv;
+#else
+typedef uint16 pms_uintv;
+#endif
+inline pms_uintv pms_popcount_v(pms_uintv v) {
+  v = v - ((v >> 1) & 0x55555555U);
+  v = (v & 0x33333333U) + ((v >> 2) & 0x33333333U);
+  v = (v + (v >> 4)) & 0x0F0F0F0FU;
+  return (v * 0x01010101U) >> 24;
+}
 
 /* pms_plane_cost of plane (a[l], b[l], c[l]) at (x[l], py) for every lane, within the
  * early-exit rule above. Lanes with bound[l] <= 0 are ignored (pass 0 for unused). */
@@ -420,7 +439,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
           fabs(G0 - (m.gx + t * m.dgx)) + fabs(G1 - (m.gy + t * m.dgy));
       const pms_floatv nearest_census = select(m.census1, m.census0, isless(t, 0.5f));
       const pms_floatv census =
-          PMS_TO_FLOATV(popcount(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
+          PMS_TO_FLOATV(pms_popcount_v(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
       const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
                                        alpha * fmin(grad_diff, tau_gradient) +
                                        census_weight * census;
