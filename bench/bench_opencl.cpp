@@ -95,6 +95,16 @@ void compute_gradient(benchmark::State& state) {
   set_work_counters(state, compute_gradient_work(c.width, c.height));
 }
 
+// Rewrites the left view's records the fixture already holds, with the same bytes.
+void pack_match_samples(benchmark::State& state) {
+  const LevelCase c = case_of(state);
+  LevelFixture& f = fixture(c);
+  time_on_device(state, [&](OpenClStages& s) {
+    s.pack_match_samples(f.device_images[PMS_VIEW_LEFT], f.device_match[PMS_VIEW_LEFT]);
+  });
+  set_work_counters(state, pack_match_samples_work(c.width, c.height));
+}
+
 // The reference's downsample: both launches of a pyramid level.
 void downsample(benchmark::State& state) {
   const LevelCase c = case_of(state);
@@ -326,6 +336,7 @@ void whole_matcher(benchmark::State& state, StereoMethod method) {
 void register_all() {
   register_kernel("downsample_color", downsample_color);
   register_kernel("compute_gradient", compute_gradient);
+  register_kernel("pack_match_samples", pack_match_samples);
   register_kernel("downsample", downsample);
   register_kernel("init_random_planes", init_random_planes);
   register_kernel("evaluate_costs", evaluate_costs);

@@ -26,6 +26,8 @@
 //      4  the support weight
 //      8  the census of the window pixel and of the nearest matched pixel
 //     72  in all
+//   (the OpenCL lanes read the other view's part, 44 of these bytes, as one 64-byte
+//   load of a match record, kernels/pms_kernel_support.h; the rates use the 72.)
 // Samples per window: offsets k*step in [-radius, radius] (the grid goes through 0),
 // so 2*(radius/step) + 1 per side, (2*(radius/step) + 1)^2 for an inner pixel (289 at
 // window 35 step 2, 121 at window 21), fewer near the border where window pixels
@@ -177,6 +179,12 @@ inline Work downsample_color_work(int width, int height) {
 // = 12 flops; loads 4 neighbours x 3 floats (48 B), stores 2 floats.
 inline Work compute_gradient_work(int width, int height) {
   return pixel_stage_work(static_cast<double>(width) * height, 12, 56);
+}
+
+// pack_match_samples (OpenCL only), per pixel: 5 differences; loads the colour and
+// gradient at x and x + 1 (48 B), stores a 48-byte record.
+inline Work pack_match_samples_work(int width, int height) {
+  return pixel_stage_work(static_cast<double>(width) * height, 5, 96);
 }
 
 // The reference's downsample: the coarse colour, then the coarse gradient.

@@ -82,7 +82,8 @@ struct KernelDescription {
 };
 
 // Every OpenClStages method (plus "downsample", the reference's colour-and-gradient
-// step, and the two whole matchers), in pipeline order.
+// step, and the two whole matchers), in pipeline order; pack_match_samples has no
+// reference counterpart, so the reference suite has no benchmark of that name.
 inline std::vector<KernelDescription> kernel_descriptions() {
   constexpr int kAll = 1 << 30;
   constexpr int kCostly = 320;
@@ -90,6 +91,7 @@ inline std::vector<KernelDescription> kernel_descriptions() {
   return {
       {"downsample_color", false, false, kAll},
       {"compute_gradient", false, false, kAll},
+      {"pack_match_samples", false, false, kAll},
       {"downsample", false, false, kAll},
       // The random planes' range barely changes the cost work: window only.
       {"init_random_planes", false, true, kCostly},
