@@ -199,7 +199,7 @@ inline int pms_dense_lanes(int width, int height, PmsLanes* lanes, int* y) {
 /* ------------------------------------------------- the other view's match records
  *
  * The cost interpolates the other view at a data-dependent x0 per lane, which made
- * every window sample a dozen gathers (three colours and two gradients at x0 and
+ * every window sample 11 gathers (three colours and two gradients at x0 and
  * x0 + 1, and a census). pack_match_samples (build_view.cl) stores per pixel one record
  * of PMS_MATCH_RECORD floats with everything a sample needs there, so each lane loads
  * its record with one vector load and a transpose turns the lanes' records into one
