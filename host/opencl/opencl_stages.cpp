@@ -7,13 +7,12 @@ namespace {
 
 namespace src = kernel_sources;
 
-// Pixels per work item of the cost kernels (PMS_LANES of pms_kernel_support.h): they
-// evaluate that many pixels' costs together in OpenCL vector types, which a CPU driver
-// compiles to SIMD code where it could not vectorise across work items.
-constexpr int kCostLanes = 8;
-const std::string kLanesOption = "-DPMS_LANES=" + std::to_string(kCostLanes);
-
-size_t lane_items(size_t pixels) { return (pixels + kCostLanes - 1) / kCostLanes; }
+int checked_lanes(int lanes) {
+  if (lanes != 4 && lanes != 8 && lanes != 16) {
+    throw std::invalid_argument("cost lanes must be 4, 8 or 16, got " + std::to_string(lanes));
+  }
+  return lanes;
+}
 
 // A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
 template <typename T>
@@ -53,16 +52,17 @@ void require_level(const DeviceLevel& in, const DeviceField& field, const char* 
 
 }  // namespace
 
-OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler)
-    : context_(context), profiler_(profiler),
+OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_lanes)
+    : context_(context), profiler_(profiler), cost_lanes_(checked_lanes(cost_lanes)),
+      lanes_option_("-DPMS_LANES=" + std::to_string(cost_lanes_)),
       downsample_color_(make_kernel(src::build_view, "downsample_color")),
       compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
       pack_match_samples_(make_kernel(src::build_view, "pack_match_samples")),
-      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes", kLanesOption)),
-      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs", kLanesOption)),
-      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial", kLanesOption)),
-      propagate_view_(make_kernel(src::propagate_view, "propagate_view", kLanesOption)),
-      refine_random_(make_kernel(src::refine_random, "refine_random", kLanesOption)),
+      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes", lanes_option_)),
+      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs", lanes_option_)),
+      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial", lanes_option_)),
+      propagate_view_(make_kernel(src::propagate_view, "propagate_view", lanes_option_)),
+      refine_random_(make_kernel(src::refine_random, "refine_random", lanes_option_)),
       carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
       plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
       lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),
@@ -88,12 +88,17 @@ void OpenClStages::launch(Kernel& kernel, size_t width, size_t height) {
   if (profiler_) profiler_->record(kernel.name(), std::move(event));
 }
 
-// One work item per kCostLanes pixels of the colour: half a row, rounded up.
+size_t OpenClStages::lane_items(size_t pixels) const {
+  const size_t lanes = static_cast<size_t>(cost_lanes_);
+  return (pixels + lanes - 1) / lanes;
+}
+
+// One work item per cost_lanes_ pixels of the colour: half a row, rounded up.
 void OpenClStages::launch_checkerboard(Kernel& kernel, int width, int height) {
   launch(kernel, lane_items((static_cast<size_t>(width) + 1) / 2), height);
 }
 
-// One work item per kCostLanes consecutive pixels of a row.
+// One work item per cost_lanes_ consecutive pixels of a row.
 void OpenClStages::launch_dense_lanes(Kernel& kernel, int width, int height) {
   launch(kernel, lane_items(static_cast<size_t>(width)), height);
 }

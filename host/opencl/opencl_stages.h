@@ -16,9 +16,16 @@ namespace flexsight::opencl {
 
 class OpenClStages {
  public:
+  // Pixels per work item of the cost kernels (PMS_LANES of pms_kernel_support.h): they
+  // evaluate that many pixels' costs together in OpenCL vector types, which a CPU driver
+  // compiles to SIMD code where it could not vectorise across work items. 4, 8 or 16;
+  // the result is the same bytes whatever the count (tested).
+  static constexpr int kDefaultCostLanes = 8;
+
   // Builds the programs (or takes them from the context's cache). `profiler` (may be
   // null) receives the event of every launch.
-  explicit OpenClStages(Context& context, KernelProfiler* profiler = nullptr);
+  explicit OpenClStages(Context& context, KernelProfiler* profiler = nullptr,
+                        int cost_lanes = kDefaultCostLanes);
 
   Context& context() { return context_; }
 
@@ -72,8 +79,12 @@ class OpenClStages {
   // A kernel of weighted_median.cl whose windows have side x side samples.
   Kernel& median_kernel(const std::string& name, int side);
 
+  size_t lane_items(size_t pixels) const;
+
   Context& context_;
   KernelProfiler* profiler_;
+  int cost_lanes_;
+  std::string lanes_option_;
   Kernel downsample_color_, compute_gradient_, pack_match_samples_, init_random_planes_, evaluate_costs_,
       propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,

@@ -3,6 +3,11 @@
 // byte, with a guard region after every output.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <tuple>
+
 #include "opencl_test_support.h"
 
 namespace flexsight::opencl::test {
@@ -167,6 +172,63 @@ TEST_P(PatchMatchStage, UpsampleNearest) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, PatchMatchStage, ::testing::ValuesIn(level_cases()),
                          level_case_name);
+
+// PMS_LANES, the pixels per work item of the cost kernels, is a build option: with 4 or
+// 16 lanes (the tests above run the default, 8) every cost stage still gives the
+// reference's bytes, in the order of an iteration.
+class CostLanes : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
+
+OpenClStages& stages_with_lanes(int lanes) {
+  static std::map<int, std::unique_ptr<OpenClStages>> by_lanes;
+  std::unique_ptr<OpenClStages>& built = by_lanes[lanes];
+  if (!built) built = std::make_unique<OpenClStages>(context(), nullptr, lanes);
+  return *built;
+}
+
+TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
+  OpenClStages& lanes = stages_with_lanes(std::get<0>(GetParam()));
+  const LevelCase& c = std::get<1>(GetParam());
+  LevelFixture f(c);
+  for (int view = 0; view < 2; ++view) {
+    DeviceField field = upload(f.fields[view], "field");
+    lanes.init_random_planes(f.device_in, view, 0, field);
+    expect_same_field(f.fields[view], field);
+  }
+  advance(f);
+  const SearchSchedule schedule = search_schedule(f.in.ndisp);
+  const std::vector<float> confidence = random_confidence(f.fields[0].pixels(), c.seed);
+  const Buffer<float> device_confidence = guarded(confidence, "confidence");
+  for (int view = 0; view < 2; ++view) {
+    DeviceField field = upload(f.fields[view], "field");
+    evaluate_costs(f.in, view, f.fields[view]);
+    lanes.evaluate_costs(f.device_in, view, field);
+    expect_same_field(f.fields[view], field);
+    for (int colour = 0; colour < 2; ++colour) {
+      propagate_spatial(f.in, view, colour, f.fields[view]);
+      lanes.propagate_spatial(f.device_in, view, colour, field);
+      expect_same_field(f.fields[view], field);
+      const DeviceField other = upload(f.fields[1 - view], "other field");
+      propagate_view(f.in, view, colour, f.fields[1 - view], f.fields[view]);
+      lanes.propagate_view(f.device_in, view, colour, other, field);
+      expect_same_field(f.fields[view], field);
+      refine_random(f.in, view, colour, 9, schedule, &confidence, f.fields[view]);
+      lanes.refine_random(f.device_in, view, colour, 9, schedule, &device_confidence, field);
+      expect_same_field(f.fields[view], field);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    FourAndSixteen, CostLanes,
+    ::testing::Combine(::testing::Values(4, 16), ::testing::ValuesIn(level_cases())),
+    [](const auto& info) {
+      return std::to_string(std::get<0>(info.param)) + "lanes_" +
+             case_name(std::get<1>(info.param));
+    });
+
+TEST(CostLanesOption, RejectsCountsTheKernelsDoNotHave) {
+  EXPECT_THROW(OpenClStages(context(), nullptr, 6), std::invalid_argument);
+}
 
 }  // namespace
 }  // namespace flexsight::opencl::test
