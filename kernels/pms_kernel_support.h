@@ -211,9 +211,8 @@ typedef struct {
 
 #if PMS_LANES == 8
 /* Lane l gets the fields of record x0[l]. Three rounds of two-source shuffles (24 in
- * all, which LLVM lowers to permutes) transpose the 8 lanes x 16 floats. */
-/* Always inlined: called, its results went through the stack and the first read of
- * them stalled. */
+ * all, which LLVM lowers to permutes) transpose the 8 lanes x 16 floats. Always
+ * inlined: called, its results went through the stack and the first read stalled. */
 __attribute__((always_inline)) inline void pms_load_match_samples(
     const __global float* match_row, int8 x0, PmsMatchSamples* m) {
   const float16 v0 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s0);

@@ -165,7 +165,7 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
     in.cost = plan.cost;
     in.ndisp = plan.ndisp;
     in.seed = params.seed;
-    // Only this level's records are alive at a time (they are 3x a view's own size).
+    // Only this level's records are alive at a time (twice a view's colour and gradient).
     Buffer<float> match[2];
     for (int view = 0; view < 2; ++view) {
       match[view] = Buffer<float>(context, match_record_floats(pixels), "match records");
