@@ -15,19 +15,20 @@
 //      5  dissimilarity: 2 fmin, 2 mul, 1 add
 //      4  census: nearest pixel (1 compare), xor, popcount, mul and add to the rest
 //      8  weight index pms_color_l1(centre, q): 3 sub, 3 fabs, 2 add
+//      1  w = colour weight * distance weight
 //      2  sum = sum + w * dissimilarity
-//     56  in all (row_term, 1 mul per window row, is left out)
+//     57  in all (row_term, 1 mul per window row, is left out)
 //   bytes the loads request (what the load units move, mostly from cache: the
 //   working set of a row of windows fits in L2, so this is not DRAM traffic)
 //     12  q: colour r, g, b of the window pixel
 //     24  m0, m1: the other view's colour at x0 and x1
 //      8  g: gradient of the window pixel
 //     16  g0, g1: the other view's gradient at x0 and x1
-//      4  the support weight
+//      8  the support weight's colour and distance factors
 //      8  the census of the window pixel and of the nearest matched pixel
-//     72  in all
+//     76  in all
 //   (the OpenCL lanes read the other view's part, 44 of these bytes, as one 64-byte
-//   load of a match record, kernels/pms_kernel_support.h; the rates use the 72.)
+//   load of a match record, kernels/pms_kernel_support.h; the rates use the 76.)
 // Samples per window: offsets k*step in [-radius, radius] (the grid goes through 0),
 // so 2*(radius/step) + 1 per side, (2*(radius/step) + 1)^2 for an inner pixel (289 at
 // window 35 step 2, 121 at window 21), fewer near the border where window pixels
@@ -59,8 +60,8 @@
 
 namespace flexsight::bench {
 
-constexpr double kCostFlopsPerSample = 56;
-constexpr double kCostBytesPerSample = 72;
+constexpr double kCostFlopsPerSample = 57;
+constexpr double kCostBytesPerSample = 76;
 
 // What one call of a stage processes.
 struct Work {

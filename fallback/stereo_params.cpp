@@ -26,6 +26,8 @@ void StereoParams::check() const {
   require(std::isfinite(tau_color) && tau_color > 0, "tau-color", "must be positive");
   require(std::isfinite(tau_gradient) && tau_gradient > 0, "tau-gradient", "must be positive");
   require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
+  require(!std::isnan(gamma_distance) && gamma_distance > 0, "gamma-distance",
+          "must be positive (inf: colour-only weights)");
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
   require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
   require(iterations_coarsest >= 1 && iterations_coarsest <= 100, "iterations-coarsest",

@@ -362,6 +362,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
     const __global float* ref_row = in->ref_color + 4 * qy * width;
     const __global float* ref_grad_row = in->ref_grad + 2 * qy * width;
     const __global float* match_row = in->other_match + PMS_MATCH_RECORD * qy * width;
+    const __global float* distance_weights = pms_distance_weight_row(weights, dy);
     for (int dx = x_begin; dx <= radius; dx += step) {
       const pms_intv qx = px + dx;
       const pms_intv inside = (qx >= 0) & (qx < width);
@@ -426,6 +427,7 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         G1 = PMS_VLOAD(0, gq1);
         W = PMS_VLOAD(0, w);
       }
+      W = W * distance_weights[dx < 0 ? -dx : dx]; /* the same for every lane */
       /* The other view at x0 (x0 is clamped into the row, so every lane's record
        * exists): values there and the steps to x1 = min(x0 + 1, width - 1). */
       PmsMatchSamples m;

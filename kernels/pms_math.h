@@ -45,9 +45,14 @@ typedef std::uint32_t pms_u32;
 #define PMS_POPCOUNT(x) __builtin_popcount(x)
 #endif
 
-/* Number of entries of the support-weight table: the L1 distance of two RGB8 colours
- * is an integer in 0..765. */
-#define PMS_WEIGHT_TABLE_SIZE 766
+/* The support-weight table (fallback/weight_table.h): first exp(-k / gamma) for the L1
+ * distance k of two RGB8 colours, an integer in 0..765; then exp(-|(dx, dy)| / gamma_d)
+ * for the window offsets, |dx| and |dy| up to 50 (the largest window is 101), row |dy|
+ * at PMS_COLOR_WEIGHT_COUNT + |dy| * PMS_DISTANCE_WEIGHT_SIDE. */
+#define PMS_COLOR_WEIGHT_COUNT 766
+#define PMS_DISTANCE_WEIGHT_SIDE 51
+#define PMS_WEIGHT_TABLE_SIZE \
+  (PMS_COLOR_WEIGHT_COUNT + PMS_DISTANCE_WEIGHT_SIDE * PMS_DISTANCE_WEIGHT_SIDE)
 
 /* Views. The left view matches at x - d, the right view at x + d. */
 #define PMS_VIEW_LEFT 0
@@ -216,6 +221,12 @@ PMS_INLINE int pms_color_l1(const PMS_GLOBAL float* p, const PMS_GLOBAL float* q
   return (int)(PMS_FABS(p[0] - q[0]) + PMS_FABS(p[1] - q[1]) + PMS_FABS(p[2] - q[2]));
 }
 
+/* Row |dy| of the distance weights: entry |dx| is the weight of window offset (dx, dy). */
+PMS_INLINE const PMS_GLOBAL float* pms_distance_weight_row(const PMS_GLOBAL float* weights,
+                                                           int dy) {
+  return weights + PMS_COLOR_WEIGHT_COUNT + (dy < 0 ? -dy : dy) * PMS_DISTANCE_WEIGHT_SIDE;
+}
+
 /* First window offset at or after max(-radius, lowest) on the grid k*step (the grid
  * goes through 0 so the centre pixel is always sampled). lowest <= 0. */
 PMS_INLINE int pms_first_offset(int radius, int step, int lowest) {
@@ -240,7 +251,8 @@ PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, i
  *   sum over window pixels q of  w(p, q) * [ (1 - alpha) min(|I_q - I'_q'|_1, tau_col)
  *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad)
  *                                           + census_weight * H(census_q, census'_q'') ]
- * with w(p, q) = weights[|I_p - I_q|_1] = exp(-|I_p - I_q|_1 / gamma), q' = q -+ d(q)
+ * with w(p, q) = exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_d) (Yoon and Kweon's
+ * adaptive support weight; both factors from the `weights` table), q' = q -+ d(q)
  * (direction -1 for the left view, +1 for the right), I' linearly interpolated, H the
  * Hamming distance of 5x5 census bit strings (pms_census_pixel) and q'' the pixel nearest
  * to q' (a bit string does not interpolate).
@@ -271,6 +283,7 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
     const PMS_GLOBAL float* ref_grad_row = ref_grad + 2 * qy * width;
     const PMS_GLOBAL float* other_row = other_color + 4 * qy * width;
     const PMS_GLOBAL float* other_grad_row = other_grad + 2 * qy * width;
+    const PMS_GLOBAL float* distance_weights = pms_distance_weight_row(weights, dy);
     for (int dx = x_begin; dx <= x_end; dx += params.step) {
       int qx = px + dx;
       float d = a * (float)qx + row_term + c;
@@ -295,7 +308,8 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
       float dissimilarity = params.one_minus_alpha * PMS_FMIN(color_diff, params.tau_color) +
                             params.alpha * PMS_FMIN(grad_diff, params.tau_gradient) +
                             params.census_weight * census;
-      sum = sum + weights[pms_color_l1(centre, q)] * dissimilarity;
+      float w = weights[pms_color_l1(centre, q)] * distance_weights[dx < 0 ? -dx : dx];
+      sum = sum + w * dissimilarity;
     }
     if (sum >= bound) return sum;
   }
@@ -316,8 +330,10 @@ PMS_INLINE float pms_support_weight_sum(const PMS_GLOBAL float* ref_color,
   float sum = 0.0f;
   for (int dy = y_begin; dy <= y_end; dy += params.step) {
     const PMS_GLOBAL float* ref_row = ref_color + 4 * (py + dy) * width;
+    const PMS_GLOBAL float* distance_weights = pms_distance_weight_row(weights, dy);
     for (int dx = x_begin; dx <= x_end; dx += params.step) {
-      sum = sum + weights[pms_color_l1(centre, ref_row + 4 * (px + dx))];
+      sum = sum + weights[pms_color_l1(centre, ref_row + 4 * (px + dx))] *
+                      distance_weights[dx < 0 ? -dx : dx];
     }
   }
   return sum;

@@ -165,8 +165,8 @@ def main():
             "view, so every pixel once. Inputs are those of the byte-for-byte tests "
             "(tests/kernel_cases.h).",
             "- evals/s: plane-candidate cost evaluations per second (nominal candidates). "
-            "GFLOP/s and GB/s come from the work model of bench/kernel_work_model.h (56 "
-            "flops and 72 requested load bytes per window sample); for the stages with the "
+            "GFLOP/s and GB/s come from the work model of bench/kernel_work_model.h (57 "
+            "flops and 76 requested load bytes per window sample); for the stages with the "
             "early exit (propagate_*, refine_random, the matchers) they are "
             "window-equivalent rates, an upper bound of the arithmetic done.",
             "- OpenCL speed-up: reference time / OpenCL time for the same arguments; cv: "

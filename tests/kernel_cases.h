@@ -156,7 +156,8 @@ inline TexturedPair textured_pair(const LevelCase& c) {
 // only changes how fast the planes' costs are computed.
 struct ReferenceLevel {
   ViewImage images[2];
-  std::vector<float> weights = make_support_weight_table(10.0f);
+  // A short distance bandwidth, so that every stage test sees the distance factors.
+  std::vector<float> weights = make_support_weight_table(10.0f, 12.0f);
   LevelInputs in;
   PlaneField fields[2];
 

@@ -60,8 +60,9 @@ std::uint32_t census_of(const ViewImage& v, int x, int y) {
 
 // Independent implementation in double precision, with explicit loops over the whole
 // window and a skip for outside pixels.
-double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma, PmsCostParams p,
-                      int px, int py, double a, double b, double c, double direction) {
+double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma,
+                      double gamma_distance, PmsCostParams p, int px, int py, double a, double b,
+                      double c, double direction) {
   double sum = 0;
   const float* centre = &ref.color[4 * (py * ref.width + px)];
   for (int dy = -p.radius; dy <= p.radius; ++dy) {
@@ -71,7 +72,8 @@ double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma
       if (qx < 0 || qy < 0 || qx >= ref.width || qy >= ref.height) continue;
       const float* q = &ref.color[4 * (qy * ref.width + qx)];
       double weight = std::exp(-(std::fabs(centre[0] - q[0]) + std::fabs(centre[1] - q[1]) +
-                                 std::fabs(centre[2] - q[2])) / gamma);
+                                 std::fabs(centre[2] - q[2])) / gamma) *
+                      std::exp(-std::sqrt(static_cast<double>(dx * dx + dy * dy)) / gamma_distance);
       double mx = qx + direction * (a * qx + b * qy + c);
       mx = std::min(std::max(mx, 0.0), ref.width - 1.0);
       int x0 = static_cast<int>(std::floor(mx));
@@ -173,17 +175,21 @@ TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
   const int w = 23, h = 17;
   ViewImage left = make_view_image(testing_support::random_rgb8(w, h, 1));
   ViewImage right = make_view_image(testing_support::random_rgb8(w, h, 2));
-  auto weights = make_support_weight_table(10.0f);
-  for (int step : {1, 2, 3}) {
-    for (int radius : {1, 4, 7}) {
-      PmsCostParams p = params(radius, step, 10.0f, 2.0f, step == 2 ? 0.0f : 0.75f);
-      for (int y : {0, 3, h - 1}) {
-        for (int x : {0, 1, 11, w - 2, w - 1}) {
-          for (float direction : {-1.0f, 1.0f}) {
-            double expected = reference_cost(left, right, 10.0, p, x, y, 0.07, -0.05, 4.3, direction);
-            float got = cost(left, right, weights, p, x, y, 0.07f, -0.05f, 4.3f, direction);
-            EXPECT_NEAR(got, expected, 1e-4 * std::max(1.0, expected))
-                << "step " << step << " radius " << radius << " at " << x << "," << y;
+  for (float gamma_distance : {INFINITY, 4.0f}) {
+    auto weights = make_support_weight_table(10.0f, gamma_distance);
+    for (int step : {1, 2, 3}) {
+      for (int radius : {1, 4, 7}) {
+        PmsCostParams p = params(radius, step, 10.0f, 2.0f, step == 2 ? 0.0f : 0.75f);
+        for (int y : {0, 3, h - 1}) {
+          for (int x : {0, 1, 11, w - 2, w - 1}) {
+            for (float direction : {-1.0f, 1.0f}) {
+              double expected = reference_cost(left, right, 10.0, gamma_distance, p, x, y, 0.07,
+                                               -0.05, 4.3, direction);
+              float got = cost(left, right, weights, p, x, y, 0.07f, -0.05f, 4.3f, direction);
+              EXPECT_NEAR(got, expected, 1e-4 * std::max(1.0, expected))
+                  << "gamma_distance " << gamma_distance << " step " << step << " radius "
+                  << radius << " at " << x << "," << y;
+            }
           }
         }
       }
@@ -209,5 +215,21 @@ TEST(WeightTable, MatchesExpAndIsMonotone) {
   ASSERT_EQ(weights.size(), static_cast<size_t>(PMS_WEIGHT_TABLE_SIZE));
   EXPECT_EQ(weights[0], 1.0f);
   EXPECT_FLOAT_EQ(weights[10], static_cast<float>(std::exp(-1.0)));
-  for (size_t k = 1; k < weights.size(); ++k) EXPECT_LE(weights[k], weights[k - 1]);
+  for (int k = 1; k < PMS_COLOR_WEIGHT_COUNT; ++k) EXPECT_LE(weights[k], weights[k - 1]);
+}
+
+TEST(WeightTable, DistanceFactorsFallWithTheOffsetAndAreOneWhenOff) {
+  auto weights = make_support_weight_table(10.0f, 20.0f);
+  EXPECT_EQ(pms_distance_weight_row(weights.data(), 0)[0], 1.0f);
+  // Offset (3, 4) and (-3, -4) lie 5 px from the centre.
+  EXPECT_FLOAT_EQ(pms_distance_weight_row(weights.data(), 4)[3],
+                  static_cast<float>(std::exp(-5.0 / 20.0)));
+  EXPECT_EQ(pms_distance_weight_row(weights.data(), -4)[3],
+            pms_distance_weight_row(weights.data(), 4)[3]);
+  EXPECT_LT(pms_distance_weight_row(weights.data(), 50)[50],
+            pms_distance_weight_row(weights.data(), 50)[49]);
+  auto colour_only = make_support_weight_table(10.0f);
+  for (int k = PMS_COLOR_WEIGHT_COUNT; k < PMS_WEIGHT_TABLE_SIZE; ++k) {
+    ASSERT_EQ(colour_only[k], 1.0f) << k;
+  }
 }

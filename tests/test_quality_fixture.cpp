@@ -34,10 +34,12 @@ SceneScores score_fixture(StereoMethod method) {
 // extrapolation leaves PPMS here as it was and takes PMS to 4.54 %. Later that day: the
 // finest level's window step of 3 costs PPMS on this half-size crop 3.86 -> 4.24 %
 // (nonocc 1.74 -> 1.76); on the 15 quarter-resolution scenes it changes nothing
-// (12.12 -> 12.11 %) in 0.6x the time.
-constexpr double kRecordedPpmsBad2All = 4.24;
-constexpr double kRecordedPpmsBad2Nonocc = 1.76;
-constexpr double kRecordedPmsBad2All = 4.54;
+// (12.12 -> 12.11 %) in 0.6x the time. 2026-12-01: the support weight's distance factor
+// (gamma_distance 20 px) moves PPMS here 4.24 -> 4.28 % (nonocc 1.76 -> 1.81) and PMS
+// 4.54 -> 4.53 %; on the 15 scenes PPMS 12.09 -> 11.93 %.
+constexpr double kRecordedPpmsBad2All = 4.28;
+constexpr double kRecordedPpmsBad2Nonocc = 1.81;
+constexpr double kRecordedPmsBad2All = 4.53;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
 }  // namespace

@@ -70,6 +70,8 @@ const std::vector<ParamOption>& param_options() {
       float_option("tau-color", "colour truncation", &StereoParams::tau_color),
       float_option("tau-gradient", "gradient truncation", &StereoParams::tau_gradient),
       float_option("gamma", "support weight bandwidth", &StereoParams::gamma),
+      float_option("gamma-distance", "support weight distance bandwidth (px, inf = off)",
+                   &StereoParams::gamma_distance),
       float_option("census-weight", "weight of the 5x5 census distance (0 = off)",
                    &StereoParams::census_weight),
       integer_option("iterations", "PMS: iterations on its only level", &StereoParams::iterations),
