@@ -44,7 +44,8 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   auto start = Clock::now();
   const std::vector<ViewImage> pyramid[2] = {build_pyramid(left_rgb8, levels),
                                              build_pyramid(right_rgb8, levels)};
-  const std::vector<float> weights = make_support_weight_table(params.gamma, params.gamma_distance);
+  const std::vector<float> weights =
+      make_support_weight_table(params.gamma, params.gamma_distance);
   result.timings.push_back({"pyramid", seconds_since(start)});
 
   PlaneField fields[2];

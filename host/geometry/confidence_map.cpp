@@ -18,7 +18,8 @@ cv::Mat confidence_map(const StereoResult& result, const cv::Mat& left_rgb8,
   const int width = result.raw_left.cols;
   const int height = result.raw_left.rows;
   const ViewImage left = make_view_image(left_rgb8);
-  const std::vector<float> weights = make_support_weight_table(params.gamma, params.gamma_distance);
+  const std::vector<float> weights =
+      make_support_weight_table(params.gamma, params.gamma_distance);
   const int levels = pipeline_level_count(params, width, height);
   const PmsCostParams cost = plan_level(params, 0, levels, width, height).cost;
   // The census term has no truncation of its own: its largest value is 24 bits.

@@ -145,7 +145,8 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
   const std::vector<DeviceView> pyramid[2] = {
       build_device_pyramid(stages, left_rgb8, levels, kViewNames[0]),
       build_device_pyramid(stages, right_rgb8, levels, kViewNames[1])};
-  const Buffer<float> weights(context, make_support_weight_table(params.gamma, params.gamma_distance), "weights");
+  const Buffer<float> weights(
+      context, make_support_weight_table(params.gamma, params.gamma_distance), "weights");
   context.finish();
   result.timings.push_back({"pyramid", seconds_since(start)});
 
