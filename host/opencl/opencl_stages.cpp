@@ -14,6 +14,9 @@ int checked_lanes(int lanes) {
   return lanes;
 }
 
+// The build option that specialises the cost kernels for `lanes` pixels per work item.
+std::string lanes_option(int lanes) { return "-DPMS_LANES=" + std::to_string(lanes); }
+
 // A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
 template <typename T>
 void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
@@ -54,15 +57,18 @@ void require_level(const DeviceLevel& in, const DeviceField& field, const char* 
 
 OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_lanes)
     : context_(context), profiler_(profiler), cost_lanes_(checked_lanes(cost_lanes)),
-      lanes_option_("-DPMS_LANES=" + std::to_string(cost_lanes_)),
       downsample_color_(make_kernel(src::build_view, "downsample_color")),
       compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
       pack_match_samples_(make_kernel(src::build_view, "pack_match_samples")),
-      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes", lanes_option_)),
-      evaluate_costs_(make_kernel(src::evaluate_costs, "evaluate_costs", lanes_option_)),
-      propagate_spatial_(make_kernel(src::propagate_spatial, "propagate_spatial", lanes_option_)),
-      propagate_view_(make_kernel(src::propagate_view, "propagate_view", lanes_option_)),
-      refine_random_(make_kernel(src::refine_random, "refine_random", lanes_option_)),
+      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes",
+                                      lanes_option(cost_lanes_))),
+      evaluate_costs_(
+          make_kernel(src::evaluate_costs, "evaluate_costs", lanes_option(cost_lanes_))),
+      propagate_spatial_(
+          make_kernel(src::propagate_spatial, "propagate_spatial", lanes_option(cost_lanes_))),
+      propagate_view_(
+          make_kernel(src::propagate_view, "propagate_view", lanes_option(cost_lanes_))),
+      refine_random_(make_kernel(src::refine_random, "refine_random", lanes_option(cost_lanes_))),
       carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
       plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
       lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),

@@ -84,7 +84,6 @@ class OpenClStages {
   Context& context_;
   KernelProfiler* profiler_;
   int cost_lanes_;
-  std::string lanes_option_;
   Kernel downsample_color_, compute_gradient_, pack_match_samples_, init_random_planes_,
       evaluate_costs_, propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,
