@@ -21,13 +21,14 @@ struct StereoParams {
   int window_step = 2;
   // PPMS: the window step on every level below the coarsest, whose planes come carried
   // from the level above and only need refining; the coarsest level (which starts from
-  // random planes) and flat PMS use window_step. Those levels took 90 % of the time, and
-  // a step of 3 samples 121 window pixels instead of 289. 15 MiddEval3 Q scenes, OpenCL,
-  // bad-2 all, seeds 1 / 2 / 3: step 2 everywhere 12.12 / 11.98 / -, step 3 on the
-  // finest level only 12.11 / 11.98 / 11.99 %, step 3 below the coarsest 12.09 / 12.18 /
-  // 11.96 % (mean 12.08 against 12.03, under the seed spread) in 0.75x the time of the
-  // finest-only variant; step 4 on the finest level gave 12.30 (seed 1).
-  int window_step_fine = 3;
+  // random planes) and flat PMS use window_step. Those levels take about 90 % of the
+  // time; a step of 4 samples 81 window pixels (step 3: 121, step 2: 289). 15 MiddEval3
+  // Q scenes, OpenCL, bad-2 all, with the 16 spatial candidates of pms_spatial_offset:
+  // step 4 11.58 / 11.58 / 11.62 % with seeds 1 / 2 / 3 in 0.8x the time of step 3,
+  // which gives 11.40 % (seed 1). The wider spatial candidates buy back more than the
+  // coarser window costs: with the old 8 candidates step 4 gave 12.23 % against 11.93
+  // for step 3.
+  int window_step_fine = 4;
   // Weight of the gradient term against the colour term in the matching cost.
   float alpha = 0.9f;
   // Truncation of the colour (L1 over RGB) and gradient dissimilarities.

@@ -54,7 +54,7 @@ inline std::vector<LevelCase> level_cases() {
 // ------------------------------------------------------------ the benchmark grid
 // Image sizes are 4:3 and named by their width; the window step is the matcher's
 // default (StereoParams::window_step), so the timings are those of a real run's coarsest
-// level (PPMS's finer levels sample with window_step_fine = 3).
+// level (PPMS's finer levels sample with window_step_fine = 4).
 constexpr int kBenchmarkStep = 2;
 constexpr int kDefaultNdisp = 64;
 constexpr int kDefaultWindow = 35;
