@@ -24,7 +24,7 @@ struct StereoParams {
   // random planes) and flat PMS use window_step. Those levels take about 90 % of the
   // time; a step of 4 samples 81 window pixels (step 3: 121, step 2: 289). 15 MiddEval3
   // Q scenes, OpenCL, bad-2 all, with the 16 spatial candidates of pms_spatial_offset:
-  // step 4 11.58 / 11.58 / 11.62 % with seeds 1 / 2 / 3 in 0.8x the time of step 3,
+  // step 4 11.58 / 11.58 / 11.62 % with seeds 1 / 2 / 3 in 0.7x the time of step 3,
   // which gives 11.40 % (seed 1). The wider spatial candidates buy back more than the
   // coarser window costs: with the old 8 candidates step 4 gave 12.23 % against 11.93
   // for step 3.

@@ -22,7 +22,7 @@ struct PipelineCase {
   int fill_coarse = 1;
   float median_background_margin = 2.0f;
   float fill_max_extrapolation = 2.0f;
-  int window_step_fine = 3;
+  int window_step_fine = 4;  // StereoParams' default
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -119,7 +119,9 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_plain_extrapolation", StereoMethod::PPMS, 11, 11, 32,
                                    1, 2.0f, INFINITY},
                       PipelineCase{"ppms_w11_one_window_step", StereoMethod::PPMS, 11, 11, 32,
-                                   1, 2.0f, 2.0f, 2}),
+                                   1, 2.0f, 2.0f, 2},
+                      PipelineCase{"ppms_w11_fine_step_3", StereoMethod::PPMS, 11, 11, 32, 1,
+                                   2.0f, 2.0f, 3}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
