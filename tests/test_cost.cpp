@@ -226,8 +226,9 @@ TEST(WeightTable, DistanceFactorsFallWithTheOffsetAndAreOneWhenOff) {
                   static_cast<float>(std::exp(-5.0 / 20.0)));
   EXPECT_EQ(pms_distance_weight_row(weights.data(), -4)[3],
             pms_distance_weight_row(weights.data(), 4)[3]);
-  EXPECT_LT(pms_distance_weight_row(weights.data(), 50)[50],
-            pms_distance_weight_row(weights.data(), 50)[49]);
+  // Along the table's last row, offset (50, 50) lies farther out than (49, 50).
+  const float* last_row = pms_distance_weight_row(weights.data(), 50);
+  EXPECT_LT(last_row[50], last_row[49]);
   auto colour_only = make_support_weight_table(10.0f);
   for (int k = PMS_COLOR_WEIGHT_COUNT; k < PMS_WEIGHT_TABLE_SIZE; ++k) {
     ASSERT_EQ(colour_only[k], 1.0f) << k;
