@@ -142,17 +142,19 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once.
+// The checkerboard stages run both colours of the left view: every pixel once. No
+// confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
   const PlaneField& start = f.fields[PMS_VIEW_LEFT];
+  const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
   DeviceField field = upload(start, "field");
   time_on_device(
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
         for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, field);
+          s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
         }
       });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));

@@ -76,16 +76,18 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once.
+// The checkerboard stages run both colours of the left view: every pixel once. No
+// confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c);
+  const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
   PlaneField field;
   time_on_host(
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
         for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, field);
+          flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
         }
       });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));

@@ -89,11 +89,18 @@ void evaluate_costs(const LevelInputs& in, int view, PlaneField& field) {
   });
 }
 
-void propagate_spatial(const LevelInputs& in, int view, int colour, PlaneField& field) {
+void propagate_spatial(const LevelInputs& in, int view, int colour,
+                       const SearchSchedule& schedule, const std::vector<float>* confidence,
+                       PlaneField& field) {
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
+    bool confident = confidence && (*confidence)[index] >= schedule.confident_threshold;
     BestPlane best(field, index);
     for (int candidate = 0; candidate < PMS_SPATIAL_CANDIDATES; ++candidate) {
+      if (!pms_spatial_candidate_tried(candidate, confident,
+                                       schedule.confident_spatial_candidates)) {
+        continue;
+      }
       int dx = 0;
       int dy = 0;
       pms_spatial_offset(candidate, &dx, &dy);

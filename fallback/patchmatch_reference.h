@@ -32,13 +32,16 @@ struct LevelInputs {
   float max_disparity() const { return static_cast<float>(ndisp - 1); }
 };
 
-// Random-search settings of one level.
+// Search settings of one level: the random search's ranges, and how much of the
+// spatial and random search a confident pixel skips.
 struct SearchSchedule {
   float initial_range = 0;   // disparity range of the first trial
   float normal_range = 0;    // normal range of the first trial
   float min_range = 0;       // trials continue while the range is at least this
   float confident_threshold = 2;  // confidence at or above which a pixel is confident
   float confident_max_range = 0;  // confident pixels skip trials with a larger range
+  // confident pixels try only this many spatial candidates (pms_spatial_candidate_tried)
+  int confident_spatial_candidates = PMS_SPATIAL_CANDIDATES;
 };
 
 // Random planes for every pixel of `view`, then their costs.
@@ -49,8 +52,11 @@ void init_random_planes(const LevelInputs& in, int view, std::uint32_t iteration
 void evaluate_costs(const LevelInputs& in, int view, PlaneField& field);
 
 // Pixels of `colour` ((x + y) % 2) try the planes of their PMS_SPATIAL_CANDIDATES
-// neighbours of the other colour.
-void propagate_spatial(const LevelInputs& in, int view, int colour, PlaneField& field);
+// neighbours of the other colour, confident ones only the schedule's nearest.
+// `confidence` (may be null: no pixel is confident) is per pixel of this level.
+void propagate_spatial(const LevelInputs& in, int view, int colour,
+                       const SearchSchedule& schedule, const std::vector<float>* confidence,
+                       PlaneField& field);
 
 // Pixels of `colour` try the plane of the pixel they match in the other view.
 void propagate_view(const LevelInputs& in, int view, int colour, const PlaneField& other,

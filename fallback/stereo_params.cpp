@@ -4,6 +4,7 @@
 #include <string>
 
 #include "host/io/input_error.h"
+#include "kernels/pms_math.h"
 
 namespace flexsight {
 namespace {
@@ -42,6 +43,11 @@ void StereoParams::check() const {
           "must be >= 0 (above 1 disables the confidence rule)");
   require(std::isfinite(confident_max_range) && confident_max_range >= 0, "confident-max-range",
           "must be >= 0");
+  require(confident_spatial_candidates >= 0 &&
+              confident_spatial_candidates <= PMS_SPATIAL_CANDIDATES,
+          "confident-spatial-candidates",
+          "must be in 0.." + std::to_string(PMS_SPATIAL_CANDIDATES) + ", got " +
+              std::to_string(confident_spatial_candidates));
   require(std::isfinite(max_normal_delta) && max_normal_delta >= 0 && max_normal_delta <= 2,
           "max-normal-delta", "must be in [0, 2]");
   require(coarsest_width >= 8, "coarsest-width", "must be at least 8");

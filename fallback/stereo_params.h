@@ -76,6 +76,13 @@ struct StereoParams {
   // since the carried plane is already within a pixel or two of the answer.
   float confident_threshold = 0.5f;
   float confident_max_range = 2.0f;
+  // PPMS: confident pixels try only this many of the spatial candidates, nearest first
+  // (pms_spatial_offset: 4 per ring at 1, 5, 15 and 45 px; 16 = all). The far rings
+  // exist to carry planes into areas whose planes are wrong, and a confident pixel's is
+  // not. 15 MiddEval3 Q scenes, OpenCL, bad-2 all (seed 1; time of the whole eval):
+  // 16 11.58 % (seeds 2 / 3: 11.58 / 11.62) in 113 s, 12 11.60 in 111 s, 8 11.60
+  // (seeds 2 / 3: 11.70 / 11.59) in 94 s, 4 11.78 in 85 s, 0 13.85 in 84 s.
+  int confident_spatial_candidates = 8;
   // Largest normal perturbation per component at the first trial (then halved).
   float max_normal_delta = 1.0f;
   // PPMS: the coarsest level is the first whose width is at most this.

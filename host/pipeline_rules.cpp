@@ -73,6 +73,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.schedule.min_range = params.min_search_range;
   plan.schedule.confident_threshold = params.confident_threshold;
   plan.schedule.confident_max_range = params.confident_max_range;
+  plan.schedule.confident_spatial_candidates = params.confident_spatial_candidates;
 
   plan.use_confidence = !plan.coarsest;
   plan.compute_confidence = level > 0;

@@ -37,7 +37,8 @@ struct LevelPlan {
   PmsCostParams cost{};
   int iterations = 0;  // PatchMatch iterations (both views, both colours each)
   SearchSchedule schedule;
-  // The random search is steered by the coarser level's left/right confidence.
+  // The spatial and random search are steered by the coarser level's left/right
+  // confidence.
   bool use_confidence = false;
   // The level computes the confidence that steers the next finer level.
   bool compute_confidence = false;

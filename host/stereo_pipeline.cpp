@@ -84,7 +84,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       for (int view = 0; view < 2; ++view) {
         const std::vector<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
         for (int colour = 0; colour < 2; ++colour) {
-          propagate_spatial(in, view, colour, fields[view]);
+          propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
           propagate_view(in, view, colour, fields[1 - view], fields[view]);
           refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
                         trusted, fields[view]);
@@ -92,7 +92,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       }
     }
 
-    // The confidence that steers the next level's random search.
+    // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
       const std::vector<float> disparity[2] = {plane_disparities(fields[0], threads),
                                                plane_disparities(fields[1], threads)};

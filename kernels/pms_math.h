@@ -212,6 +212,16 @@ PMS_INLINE void pms_spatial_offset(int candidate, int* dx, int* dy) {
   *dy = direction == 2 ? -distance : (direction == 3 ? distance : 0);
 }
 
+/* PPMS's confidence rule for spatial propagation: a pixel whose coarser level passed
+ * the left/right check (confident) tries only the first `confident_candidates` of
+ * them, the near rings. The far candidates exist to carry planes across textureless or
+ * occluded areas whose planes are wrong, and a confident pixel's carried plane is already
+ * within a pixel or two of the answer. */
+PMS_INLINE int pms_spatial_candidate_tried(int candidate, int confident,
+                                           int confident_candidates) {
+  return !confident || candidate < confident_candidates;
+}
+
 /* Random search schedule: trial k may move the disparity by initial_range / 2^k and
  * each normal component by normal_range / 2^k; trials run while the disparity range
  * is at least min_range. */

@@ -175,13 +175,8 @@ struct ReferenceLevel {
   }
 };
 
-// The two fields after a first spatial step, so that propagation and refinement start
-// from planes that differ between neighbours and views.
-inline void advance(ReferenceLevel& f) {
-  for (int view = 0; view < 2; ++view) propagate_spatial(f.in, view, 0, f.fields[view]);
-}
-
-// The random search of the coarsest level for the level's disparity range.
+// The search of the coarsest level for the level's disparity range, with the confidence
+// rules of the finer levels (which apply only where a confidence map is passed).
 inline SearchSchedule search_schedule(int ndisp) {
   SearchSchedule schedule;
   schedule.initial_range = 0.5f * static_cast<float>(ndisp);
@@ -189,7 +184,17 @@ inline SearchSchedule search_schedule(int ndisp) {
   schedule.min_range = 0.25f;
   schedule.confident_threshold = 0.5f;
   schedule.confident_max_range = 2.0f;
+  schedule.confident_spatial_candidates = 8;
   return schedule;
+}
+
+// The two fields after a first spatial step, so that propagation and refinement start
+// from planes that differ between neighbours and views.
+inline void advance(ReferenceLevel& f) {
+  const SearchSchedule schedule = search_schedule(f.in.ndisp);
+  for (int view = 0; view < 2; ++view) {
+    propagate_spatial(f.in, view, 0, schedule, nullptr, f.fields[view]);
+  }
 }
 
 // A random confidence in [0, 1) per pixel: about half the pixels count as confident at

@@ -138,6 +138,8 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --window-step-fine 0", "--window-step-fine");
   expect_rejected(pair + " --window 7 --window-step-fine 9", "--window-step-fine");
   expect_rejected(pair + " --alpha 1.5", "--alpha");
+  expect_rejected(pair + " --confident-spatial-candidates 17", "--confident-spatial-candidates");
+  expect_rejected(pair + " --confident-spatial-candidates -1", "--confident-spatial-candidates");
   expect_rejected(pair + " --ndisp twelve", "--ndisp");
 }
 

@@ -53,6 +53,19 @@ TEST(PlanLevel, BelowTheCoarsestLevelTheSearchStartsAtTheFineRange) {
   EXPECT_EQ(plan_level(params, 0, 3, 100, 80).name, "level 0 (100x80)");
 }
 
+TEST(PlanLevel, EveryLevelTakesTheConfidenceRules) {
+  StereoParams params;
+  params.confident_threshold = 0.25f;
+  params.confident_max_range = 3.0f;
+  params.confident_spatial_candidates = 5;
+  for (int level = 0; level < 3; ++level) {
+    const SearchSchedule schedule = plan_level(params, level, 3, 100 >> level, 80 >> level).schedule;
+    EXPECT_EQ(schedule.confident_threshold, 0.25f) << level;
+    EXPECT_EQ(schedule.confident_max_range, 3.0f) << level;
+    EXPECT_EQ(schedule.confident_spatial_candidates, 5) << level;
+  }
+}
+
 TEST(PlanLevel, EveryLevelBelowTheCoarsestTakesTheFineWindowStep) {
   StereoParams params;
   params.window_step = 2;

@@ -195,7 +195,7 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
       for (int view = 0; view < 2; ++view) {
         const Buffer<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
         for (int colour = 0; colour < 2; ++colour) {
-          stages.propagate_spatial(in, view, colour, fields[view]);
+          stages.propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
           stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
           stages.refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
                                trusted, fields[view]);
@@ -203,7 +203,7 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
       }
     }
 
-    // The confidence that steers the next level's random search.
+    // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
       Buffer<float> disparity[2] = {Buffer<float>(context, pixels, "disparity (left)"),
                                     Buffer<float>(context, pixels, "disparity (right)")};

@@ -146,9 +146,12 @@ void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& 
 }
 
 void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,
-                                     DeviceField& field) {
+                                     const SearchSchedule& schedule,
+                                     const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "propagate_spatial");
-  set_cost_args(propagate_spatial_, in, view, colour, field.planes, field.cost);
+  if (confidence) require_size(*confidence, field.pixels(), "propagate_spatial");
+  set_cost_args(propagate_spatial_, in, view, colour, schedule.confident_threshold,
+                schedule.confident_spatial_candidates, confidence, field.planes, field.cost);
   launch_checkerboard(propagate_spatial_, field.width, field.height);
 }
 

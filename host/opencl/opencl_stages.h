@@ -40,7 +40,9 @@ class OpenClStages {
   void init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,
                           DeviceField& field);
   void evaluate_costs(const DeviceLevel& in, int view, DeviceField& field);
-  void propagate_spatial(const DeviceLevel& in, int view, int colour, DeviceField& field);
+  void propagate_spatial(const DeviceLevel& in, int view, int colour,
+                         const SearchSchedule& schedule, const Buffer<float>* confidence,
+                         DeviceField& field);
   void propagate_view(const DeviceLevel& in, int view, int colour, const DeviceField& other,
                       DeviceField& field);
   void refine_random(const DeviceLevel& in, int view, int colour, std::uint32_t iteration,

@@ -47,15 +47,39 @@ TEST_P(PatchMatchStage, EvaluateCosts) {
   }
 }
 
-TEST_P(PatchMatchStage, PropagateSpatial) {
+TEST_P(PatchMatchStage, PropagateSpatialWithoutConfidence) {
   LevelFixture f(GetParam());
+  const SearchSchedule schedule = search_schedule(f.in.ndisp);
   for (int view = 0; view < 2; ++view) {
     for (int colour = 0; colour < 2; ++colour) {
       DeviceField field = upload(f.fields[view], "field");
       const PlaneField before = f.fields[view];
-      propagate_spatial(f.in, view, colour, f.fields[view]);
+      propagate_spatial(f.in, view, colour, schedule, nullptr, f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().propagate_spatial(f.device_in, view, colour, field);
+      stages().propagate_spatial(f.device_in, view, colour, schedule, nullptr, field);
+      expect_same_field(f.fields[view], field);
+    }
+  }
+}
+
+// Confident pixels try only the first confident_spatial_candidates candidates; the count
+// varies with the case (2 to 12: whole rings and parts of them).
+TEST_P(PatchMatchStage, PropagateSpatialWithConfidence) {
+  LevelFixture f(GetParam());
+  SearchSchedule schedule = search_schedule(f.in.ndisp);
+  schedule.confident_spatial_candidates =
+      1 + static_cast<int>(GetParam().seed % PMS_SPATIAL_CANDIDATES);
+  const std::vector<float> confidence =
+      random_confidence(f.fields[0].pixels(), GetParam().seed);
+  const Buffer<float> device_confidence = guarded(confidence, "confidence");
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const PlaneField before = f.fields[view];
+      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      stages().propagate_spatial(f.device_in, view, colour, schedule, &device_confidence,
+                                 field);
       expect_same_field(f.fields[view], field);
     }
   }
@@ -204,8 +228,8 @@ TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
     lanes.evaluate_costs(f.device_in, view, field);
     expect_same_field(f.fields[view], field);
     for (int colour = 0; colour < 2; ++colour) {
-      propagate_spatial(f.in, view, colour, f.fields[view]);
-      lanes.propagate_spatial(f.device_in, view, colour, field);
+      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
+      lanes.propagate_spatial(f.device_in, view, colour, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
       const DeviceField other = upload(f.fields[1 - view], "other field");
       propagate_view(f.in, view, colour, f.fields[1 - view], f.fields[view]);
