@@ -48,6 +48,8 @@ void StereoParams::check() const {
           "confident-spatial-candidates",
           "must be in 0.." + std::to_string(PMS_SPATIAL_CANDIDATES) + ", got " +
               std::to_string(confident_spatial_candidates));
+  require(refresh_confidence == 0 || refresh_confidence == 1, "refresh-confidence",
+          "must be 0 or 1");
   require(std::isfinite(max_normal_delta) && max_normal_delta >= 0 && max_normal_delta <= 2,
           "max-normal-delta", "must be in [0, 2]");
   require(coarsest_width >= 8, "coarsest-width", "must be at least 8");

@@ -76,6 +76,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.schedule.confident_spatial_candidates = params.confident_spatial_candidates;
 
   plan.use_confidence = !plan.coarsest;
+  plan.refresh_confidence = plan.use_confidence && params.refresh_confidence == 1;
   plan.compute_confidence = level > 0;
   plan.fill_before_carry = level > 0 && params.fill_coarse == 1;
   plan.name = "level " + std::to_string(level) + " (" + std::to_string(width) + "x" +

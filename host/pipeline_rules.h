@@ -40,6 +40,9 @@ struct LevelPlan {
   // The spatial and random search are steered by the coarser level's left/right
   // confidence.
   bool use_confidence = false;
+  // After each iteration but the last, the confidence is recomputed from this level's
+  // planes (StereoParams::refresh_confidence).
+  bool refresh_confidence = false;
   // The level computes the confidence that steers the next finer level.
   bool compute_confidence = false;
   // Then its inconsistent pixels take the background plane (fill_inconsistent) before

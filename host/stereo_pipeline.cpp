@@ -23,6 +23,17 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The disparities of both views' planes, and from them each view's left/right
+// confidence.
+void confidence_from_planes(const PlaneField fields[2], int threads,
+                            std::vector<float> disparity[2], std::vector<float> confidence[2]) {
+  for (int view = 0; view < 2; ++view) disparity[view] = plane_disparities(fields[view], threads);
+  for (int view = 0; view < 2; ++view) {
+    confidence[view] = lr_confidence(disparity[view], disparity[1 - view], fields[view].width,
+                                     fields[view].height, view, threads);
+  }
+}
+
 }  // namespace
 
 double StereoResult::total_seconds() const {
@@ -90,16 +101,17 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                         trusted, fields[view]);
         }
       }
+      // The next iteration trusts what this one made consistent.
+      if (plan.refresh_confidence && iteration < plan.iterations) {
+        std::vector<float> disparity[2];
+        confidence_from_planes(fields, threads, disparity, confidence);
+      }
     }
 
     // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
-      const std::vector<float> disparity[2] = {plane_disparities(fields[0], threads),
-                                               plane_disparities(fields[1], threads)};
-      for (int view = 0; view < 2; ++view) {
-        confidence[view] =
-            lr_confidence(disparity[view], disparity[1 - view], width, height, view, threads);
-      }
+      std::vector<float> disparity[2];
+      confidence_from_planes(fields, threads, disparity, confidence);
       if (plan.fill_before_carry) {
         for (int view = 0; view < 2; ++view) {
           const std::vector<std::uint8_t> consistent =

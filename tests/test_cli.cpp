@@ -140,6 +140,7 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --alpha 1.5", "--alpha");
   expect_rejected(pair + " --confident-spatial-candidates 17", "--confident-spatial-candidates");
   expect_rejected(pair + " --confident-spatial-candidates -1", "--confident-spatial-candidates");
+  expect_rejected(pair + " --refresh-confidence 2", "--refresh-confidence");
   expect_rejected(pair + " --ndisp twelve", "--ndisp");
 }
 

@@ -66,6 +66,19 @@ TEST(PlanLevel, EveryLevelTakesTheConfidenceRules) {
   }
 }
 
+TEST(PlanLevel, OnlyLevelsThatUseAConfidenceRefreshIt) {
+  StereoParams params;
+  params.refresh_confidence = 1;
+  EXPECT_FALSE(plan_level(params, 2, 3, 25, 20).refresh_confidence);  // coarsest: none
+  EXPECT_TRUE(plan_level(params, 1, 3, 50, 40).refresh_confidence);
+  EXPECT_TRUE(plan_level(params, 0, 3, 100, 80).refresh_confidence);
+  params.refresh_confidence = 0;
+  EXPECT_FALSE(plan_level(params, 0, 3, 100, 80).refresh_confidence);
+  params.refresh_confidence = 1;
+  params.method = StereoMethod::PMS;
+  EXPECT_FALSE(plan_level(params, 0, 1, 100, 80).refresh_confidence);
+}
+
 TEST(PlanLevel, EveryLevelBelowTheCoarsestTakesTheFineWindowStep) {
   StereoParams params;
   params.window_step = 2;

@@ -55,6 +55,27 @@ std::vector<DeviceView> build_device_pyramid(OpenClStages& stages, const cv::Mat
 
 const char* const kViewNames[2] = {"left", "right"};
 
+// The disparities of both views' planes into `disparity`, and from them each view's
+// left/right confidence into `confidence` (reused when it has the fields' size).
+void confidence_from_planes(OpenClStages& stages, const DeviceField fields[2],
+                            Buffer<float> disparity[2], Buffer<float> confidence[2]) {
+  const int width = fields[0].width;
+  const int height = fields[0].height;
+  const size_t pixels = fields[0].pixels();
+  for (int view = 0; view < 2; ++view) {
+    disparity[view] = Buffer<float>(stages.context(), pixels,
+                                    std::string("disparity (") + kViewNames[view] + ")");
+    stages.plane_disparities(fields[view], disparity[view]);
+  }
+  for (int view = 0; view < 2; ++view) {
+    if (confidence[view].size() != pixels) {
+      confidence[view] = Buffer<float>(stages.context(), pixels, "confidence");
+    }
+    stages.lr_confidence(disparity[view], disparity[1 - view], width, height, view,
+                         confidence[view]);
+  }
+}
+
 }  // namespace
 
 struct OpenClMatcher::State {
@@ -201,18 +222,17 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
                                trusted, fields[view]);
         }
       }
+      // The next iteration trusts what this one made consistent.
+      if (plan.refresh_confidence && iteration < plan.iterations) {
+        Buffer<float> disparity[2];
+        confidence_from_planes(stages, fields, disparity, confidence);
+      }
     }
 
     // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
-      Buffer<float> disparity[2] = {Buffer<float>(context, pixels, "disparity (left)"),
-                                    Buffer<float>(context, pixels, "disparity (right)")};
-      for (int view = 0; view < 2; ++view) stages.plane_disparities(fields[view], disparity[view]);
-      for (int view = 0; view < 2; ++view) {
-        confidence[view] = Buffer<float>(context, pixels, "confidence");
-        stages.lr_confidence(disparity[view], disparity[1 - view], width, height, view,
-                             confidence[view]);
-      }
+      Buffer<float> disparity[2];
+      confidence_from_planes(stages, fields, disparity, confidence);
       if (plan.fill_before_carry) {
         Buffer<std::uint8_t> consistent(context, pixels, "consistent");
         for (int view = 0; view < 2; ++view) {

@@ -23,6 +23,8 @@ struct PipelineCase {
   float median_background_margin = 2.0f;
   float fill_max_extrapolation = 2.0f;
   int window_step_fine = 4;  // StereoParams' default
+  int refresh_confidence = 1;
+  int iterations_fine = 2;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -56,6 +58,8 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.median_background_margin = c.median_background_margin;
   params.fill_max_extrapolation = c.fill_max_extrapolation;
   params.window_step_fine = c.window_step_fine;
+  params.refresh_confidence = c.refresh_confidence;
+  params.iterations_fine = c.iterations_fine;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -121,7 +125,11 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_one_window_step", StereoMethod::PPMS, 11, 11, 32,
                                    1, 2.0f, 2.0f, 2},
                       PipelineCase{"ppms_w11_fine_step_3", StereoMethod::PPMS, 11, 11, 32, 1,
-                                   2.0f, 2.0f, 3}),
+                                   2.0f, 2.0f, 3},
+                      PipelineCase{"ppms_w11_carried_confidence_only", StereoMethod::PPMS, 11,
+                                   11, 32, 1, 2.0f, 2.0f, 4, 0},
+                      PipelineCase{"ppms_w11_three_fine_iterations", StereoMethod::PPMS, 11, 11,
+                                   32, 1, 2.0f, 2.0f, 4, 1, 3}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
