@@ -94,7 +94,8 @@ void propagate_spatial(const LevelInputs& in, int view, int colour,
                        PlaneField& field) {
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
-    bool confident = confidence && (*confidence)[index] >= schedule.confident_threshold;
+    bool confident =
+        confidence && pms_is_confident((*confidence)[index], schedule.confident_threshold);
     BestPlane best(field, index);
     for (int candidate = 0; candidate < PMS_SPATIAL_CANDIDATES; ++candidate) {
       if (!pms_spatial_candidate_tried(candidate, confident,
@@ -141,7 +142,8 @@ void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t it
   const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
-    bool confident = confidence && (*confidence)[index] >= schedule.confident_threshold;
+    bool confident =
+        confidence && pms_is_confident((*confidence)[index], schedule.confident_threshold);
     BestPlane best(field, index);
     float range = schedule.initial_range;
     float normal_range = schedule.normal_range;

@@ -159,7 +159,7 @@ typedef struct {
   int x[PMS_LANES];
   int active[PMS_LANES];
   int first;  /* unclamped x of lane 0; lane l's is first + stride * l */
-  int stride; /* 2 for checkerboard lanes, 1 for dense ones */
+  int stride; /* 2 for checkerboard lanes, 1 for dense ones, 0 for listed ones */
 } PmsLanes;
 
 /* Lanes of a checkerboard item: the global size is (ceil(ceil(width / 2) / PMS_LANES),
@@ -194,6 +194,37 @@ inline int pms_dense_lanes(int width, int height, PmsLanes* lanes, int* y) {
     lanes->x[l] = x < width ? x : width - 1;
   }
   return 1;
+}
+
+/* Lanes of a listed item: row y's list of pixels (list_unsure_pixels.cl: list +
+ * y * list_stride, counts[y] of them), PMS_LANES consecutive entries per item; the global
+ * size is (ceil(list_stride / PMS_LANES), height). Lanes past the row's count are
+ * inactive and take the last listed pixel. The pixels are in no fixed pattern, so the
+ * cost reads them lane by lane (stride 0). Returns 0 when no lane has a pixel. */
+inline int pms_listed_lanes(const __global int* list, const __global int* counts,
+                            int list_stride, int height, PmsLanes* lanes, int* y) {
+  *y = (int)get_global_id(1);
+  if (*y >= height) return 0;
+  const int count = counts[*y];
+  const int first = PMS_LANES * (int)get_global_id(0);
+  if (first >= count) return 0;
+  const __global int* row_list = list + *y * list_stride;
+  for (int l = 0; l < PMS_LANES; ++l) {
+    lanes->active[l] = first + l < count;
+    lanes->x[l] = row_list[first + l < count ? first + l : count - 1];
+  }
+  lanes->first = lanes->x[0];
+  lanes->stride = 0;
+  return 1;
+}
+
+/* The lanes of a checkerboard stage: the whole colour when `list` is NULL, otherwise the
+ * listed pixels of the colour. */
+inline int pms_stage_lanes(int width, int height, int colour, const __global int* list,
+                           const __global int* counts, int list_stride, PmsLanes* lanes,
+                           int* y) {
+  if (list == 0) return pms_checker_lanes(width, height, colour, lanes, y);
+  return pms_listed_lanes(list, counts, list_stride, height, lanes, y);
 }
 
 /* ------------------------------------------------- the other view's match records

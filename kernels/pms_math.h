@@ -212,11 +212,18 @@ PMS_INLINE void pms_spatial_offset(int candidate, int* dx, int* dy) {
   *dy = direction == 2 ? -distance : (direction == 3 ? distance : 0);
 }
 
-/* PPMS's confidence rule for spatial propagation: a pixel whose coarser level passed
- * the left/right check (confident) tries only the first `confident_candidates` of
- * them, the near rings. The far candidates exist to carry planes across textureless or
- * occluded areas whose planes are wrong, and a confident pixel's carried plane is already
- * within a pixel or two of the answer. */
+/* PPMS's confidence rules. A pixel is confident where the coarser level's (or, after
+ * a refresh, its own level's) left/right confidence reaches the threshold. */
+PMS_INLINE int pms_is_confident(float confidence, float threshold) {
+  return confidence >= threshold;
+}
+
+/* A confident pixel tries only the first `confident_candidates` spatial candidates, the
+ * near rings. The far candidates exist to carry planes across textureless or occluded
+ * areas whose planes are wrong, and a confident pixel's carried plane is already within
+ * a pixel or two of the answer. The kernels split the candidate loop at
+ * confident_candidates instead (every pixel, then only the unsure ones: the same order
+ * per pixel). */
 PMS_INLINE int pms_spatial_candidate_tried(int candidate, int confident,
                                            int confident_candidates) {
   return !confident || candidate < confident_candidates;
@@ -228,6 +235,17 @@ PMS_INLINE int pms_spatial_candidate_tried(int candidate, int confident,
 PMS_INLINE int pms_search_trial_count(float initial_range, float min_range) {
   int count = 0;
   for (float range = initial_range; range >= min_range && count < 30; range = range * 0.5f) {
+    ++count;
+  }
+  return count;
+}
+
+/* A confident pixel skips the trials whose range exceeds max_range: since the ranges
+ * halve, the first ones. Their count, of `trials` (the kernels run those trials for the
+ * unsure pixels only, then the rest for every pixel: the same order per pixel). */
+PMS_INLINE int pms_search_wide_trial_count(float initial_range, int trials, float max_range) {
+  int count = 0;
+  for (float range = initial_range; count < trials && range > max_range; range = range * 0.5f) {
     ++count;
   }
   return count;

@@ -1,26 +1,24 @@
-/* Pixels of one checkerboard colour try the planes of their PMS_SPATIAL_CANDIDATES
- * neighbours, which all have the other colour and so are not written by this launch
- * (reference: propagate_spatial); confident pixels only the first
- * confident_candidates. `confidence` may be NULL (coarsest level): then no pixel counts
- * as confident. Each work item handles PMS_LANES pixels of a row (pms_checker_lanes) and
- * evaluates their candidates together (pms_cost_lanes). */
+/* Pixels of one checkerboard colour try the planes of their spatial candidates
+ * first_candidate .. end_candidate - 1, which all have the other colour and so are not
+ * written by this launch (reference: propagate_spatial, whose confidence rule the host
+ * applies by launching the near candidates for every pixel of the colour, `list` NULL,
+ * then the far ones for the unsure pixels of list_unsure_pixels). Each work item handles
+ * PMS_LANES pixels of a row and evaluates their candidates together (pms_cost_lanes). */
 #include "pms_kernel_support.h"
 
-__kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, float confident_threshold,
-                                int confident_candidates, const __global float* confidence,
+__kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, int first_candidate,
+                                int end_candidate, const __global int* list,
+                                const __global int* list_counts, int list_stride,
                                 __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
+  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+    return;
+  }
   PmsCostInputs in = PMS_COST_INPUTS();
   PmsBestPlane best[PMS_LANES];
-  int confident[PMS_LANES];
-  for (int l = 0; l < PMS_LANES; ++l) {
-    const int index = y * width + lanes.x[l];
-    best[l] = pms_best_load(planes, cost, index);
-    confident[l] = confidence != 0 && confidence[index] >= confident_threshold;
-  }
-  for (int candidate = 0; candidate < PMS_SPATIAL_CANDIDATES; ++candidate) {
+  for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
+  for (int candidate = first_candidate; candidate < end_candidate; ++candidate) {
     int dx = 0;
     int dy = 0;
     pms_spatial_offset(candidate, &dx, &dy);
@@ -31,8 +29,7 @@ __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, float confiden
     for (int l = 0; l < PMS_LANES; ++l) {
       int nx = lanes.x[l] + dx;
       float neighbour[3] = {0.0f, 0.0f, 0.0f};
-      int ok = lanes.active[l] && nx >= 0 && nx < width &&
-               pms_spatial_candidate_tried(candidate, confident[l], confident_candidates);
+      int ok = lanes.active[l] && nx >= 0 && nx < width;
       if (ok) {
         pms_load_plane(planes, ny * width + nx, neighbour);
         ok = !pms_best_same_as(&best[l], neighbour); /* its cost here is the one we hold */

@@ -1,36 +1,34 @@
 /* Pixels of one checkerboard colour try random perturbations of their plane with
- * halving ranges (reference: refine_random). `confidence` may be NULL (coarsest level):
- * then no pixel counts as confident. Each work item handles PMS_LANES pixels of a row
- * (pms_checker_lanes) and evaluates their trials together (pms_cost_lanes). */
+ * halving ranges, trials first_trial .. end_trial - 1 of the schedule (reference:
+ * refine_random, whose confidence rule the host applies by launching the wide trials for
+ * the unsure pixels of list_unsure_pixels, then the others for every pixel of the
+ * colour, `list` NULL). Each work item handles PMS_LANES pixels of a row and evaluates
+ * their trials together (pms_cost_lanes). */
 #include "pms_kernel_support.h"
 
 __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint iteration,
                             float max_disparity, float initial_range, float normal_range,
-                            float min_range, float confident_threshold,
-                            float confident_max_range, const __global float* confidence,
+                            int first_trial, int end_trial, const __global int* list,
+                            const __global int* list_counts, int list_stride,
                             __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
-  PmsCostInputs in = PMS_COST_INPUTS();
-  const int trials = pms_search_trial_count(initial_range, min_range);
-  PmsBestPlane best[PMS_LANES];
-  int confident[PMS_LANES];
-  for (int l = 0; l < PMS_LANES; ++l) {
-    int index = y * width + lanes.x[l];
-    confident[l] = confidence != 0 && confidence[index] >= confident_threshold;
-    best[l] = pms_best_load(planes, cost, index);
+  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+    return;
   }
+  PmsCostInputs in = PMS_COST_INPUTS();
+  PmsBestPlane best[PMS_LANES];
+  for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
   float range = initial_range;
   float trial_normal_range = normal_range;
-  for (int trial = 0; trial < trials;
-       ++trial, range *= 0.5f, trial_normal_range *= 0.5f) {
+  for (int trial = 0; trial < end_trial; ++trial, range *= 0.5f, trial_normal_range *= 0.5f) {
+    if (trial < first_trial) continue; /* the ranges still halve, as in the reference */
     PmsCandidateBatch batch;
     batch.any = 0;
     for (int l = 0; l < PMS_LANES; ++l) {
       const int x = lanes.x[l];
       float candidate[3] = {0.0f, 0.0f, 0.0f};
-      int ok = lanes.active[l] && !(confident[l] && range > confident_max_range);
+      int ok = lanes.active[l];
       if (ok) {
         uint index = (uint)(y * width + x);
         float u[4];

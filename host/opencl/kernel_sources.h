@@ -22,6 +22,7 @@ extern const KernelSource refine_random;
 extern const KernelSource carry_planes_to_finer;
 extern const KernelSource plane_disparities;
 extern const KernelSource lr_confidence;
+extern const KernelSource list_unsure_pixels;
 extern const KernelSource upsample_nearest;
 extern const KernelSource left_right_check;
 extern const KernelSource fill_inconsistent;

@@ -1,5 +1,6 @@
 #include "host/opencl/opencl_stages.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace flexsight::opencl {
@@ -72,6 +73,7 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
       plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
       lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),
+      list_unsure_pixels_(make_kernel(src::list_unsure_pixels, "list_unsure_pixels")),
       upsample_nearest_(make_kernel(src::upsample_nearest, "upsample_nearest")),
       left_right_check_(make_kernel(src::left_right_check, "left_right_check")),
       fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")) {}
@@ -145,14 +147,47 @@ void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& 
   launch_dense_lanes(evaluate_costs_, field.width, field.height);
 }
 
+int OpenClStages::list_unsure_pixels(const Buffer<float>& confidence, int width, int height,
+                                     int colour, float confident_threshold) {
+  const int stride = (width + 1) / 2;
+  const size_t entries = static_cast<size_t>(stride) * height;
+  if (unsure_list_.size() < entries) unsure_list_ = Buffer<int>(context_, entries, "unsure pixels");
+  if (unsure_counts_.size() < static_cast<size_t>(height)) {
+    unsure_counts_ = Buffer<int>(context_, height, "unsure pixel counts");
+  }
+  list_unsure_pixels_.set_args(confidence, width, height, colour, confident_threshold, stride,
+                               unsure_list_, unsure_counts_);
+  launch(list_unsure_pixels_, height, 1);
+  return stride;
+}
+
+// The reference's per-pixel rule (pms_spatial_candidate_tried) as two launches with the
+// same order per pixel: every pixel of the colour tries the near candidates, then the
+// unsure ones the rest. Launching the far candidates over a list keeps confident lanes
+// from riding along idle beside an unsure one.
 void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,
                                      const SearchSchedule& schedule,
                                      const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "propagate_spatial");
   if (confidence) require_size(*confidence, field.pixels(), "propagate_spatial");
-  set_cost_args(propagate_spatial_, in, view, colour, schedule.confident_threshold,
-                schedule.confident_spatial_candidates, confidence, field.planes, field.cost);
-  launch_checkerboard(propagate_spatial_, field.width, field.height);
+  const Buffer<int>* every_pixel = nullptr;
+  const int near = confidence ? std::clamp(schedule.confident_spatial_candidates, 0,
+                                           PMS_SPATIAL_CANDIDATES)
+                              : PMS_SPATIAL_CANDIDATES;
+  if (near > 0) {
+    set_cost_args(propagate_spatial_, in, view, colour, 0, near, every_pixel, every_pixel, 0,
+                  field.planes, field.cost);
+    launch_checkerboard(propagate_spatial_, field.width, field.height);
+  }
+  if (near < PMS_SPATIAL_CANDIDATES) {
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+                                          schedule.confident_threshold);
+    const Buffer<int>* unsure = &unsure_list_;
+    const Buffer<int>* counts = &unsure_counts_;
+    set_cost_args(propagate_spatial_, in, view, colour, near, PMS_SPATIAL_CANDIDATES, unsure,
+                  counts, stride, field.planes, field.cost);
+    launch_checkerboard(propagate_spatial_, field.width, field.height);
+  }
 }
 
 void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
@@ -163,16 +198,35 @@ void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
   launch_checkerboard(propagate_view_, field.width, field.height);
 }
 
+// The reference's per-pixel rule (confident pixels skip the trials wider than
+// confident_max_range, which come first) as two launches with the same order per pixel:
+// the unsure pixels of the colour try the wide trials, then every pixel the rest.
 void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
                                  std::uint32_t iteration, const SearchSchedule& schedule,
                                  const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "refine_random");
   if (confidence) require_size(*confidence, field.pixels(), "refine_random");
-  set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
-                schedule.initial_range, schedule.normal_range, schedule.min_range,
-                schedule.confident_threshold, schedule.confident_max_range, confidence,
-                field.planes, field.cost);
-  launch_checkerboard(refine_random_, field.width, field.height);
+  const Buffer<int>* every_pixel = nullptr;
+  const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);
+  const int wide = confidence ? pms_search_wide_trial_count(schedule.initial_range, trials,
+                                                            schedule.confident_max_range)
+                              : 0;
+  if (wide > 0) {
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+                                          schedule.confident_threshold);
+    const Buffer<int>* unsure = &unsure_list_;
+    const Buffer<int>* counts = &unsure_counts_;
+    set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
+                  schedule.initial_range, schedule.normal_range, 0, wide, unsure, counts,
+                  stride, field.planes, field.cost);
+    launch_checkerboard(refine_random_, field.width, field.height);
+  }
+  if (wide < trials) {
+    set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
+                  schedule.initial_range, schedule.normal_range, wide, trials, every_pixel,
+                  every_pixel, 0, field.planes, field.cost);
+    launch_checkerboard(refine_random_, field.width, field.height);
+  }
 }
 
 void OpenClStages::carry_planes_to_finer(const DeviceField& coarse, DeviceField& fine) {

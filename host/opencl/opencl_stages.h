@@ -82,14 +82,21 @@ class OpenClStages {
   Kernel& median_kernel(const std::string& name, int side);
 
   size_t lane_items(size_t pixels) const;
+  // The pixels of `colour` that are not confident, row by row, into unsure_list_ and
+  // unsure_counts_ (list_unsure_pixels.cl); returns the list's row stride.
+  int list_unsure_pixels(const Buffer<float>& confidence, int width, int height, int colour,
+                         float confident_threshold);
 
   Context& context_;
   KernelProfiler* profiler_;
   int cost_lanes_;
   Kernel downsample_color_, compute_gradient_, pack_match_samples_, init_random_planes_,
       evaluate_costs_, propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
-      plane_disparities_, lr_confidence_, upsample_nearest_, left_right_check_,
-      fill_inconsistent_;
+      plane_disparities_, lr_confidence_, list_unsure_pixels_, upsample_nearest_,
+      left_right_check_, fill_inconsistent_;
+  // The work list of the unsure pixels' extra search steps, reused between launches.
+  Buffer<int> unsure_list_;
+  Buffer<int> unsure_counts_;
   // The kernels of weighted_median.cl by name and PMS_MEDIAN_MAX_SAMPLES (window samples).
   std::map<std::pair<std::string, int>, Kernel> weighted_median_;
 };
