@@ -140,6 +140,10 @@ void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t it
                    const SearchSchedule& schedule, const std::vector<float>* confidence,
                    PlaneField& field) {
   const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);
+  // The trials a confident pixel skips: the first ones, whose range exceeds
+  // confident_max_range (the OpenCL path launches them for the unsure pixels only).
+  const int wide =
+      pms_search_wide_trial_count(schedule.initial_range, trials, schedule.confident_max_range);
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
     bool confident =
@@ -148,7 +152,7 @@ void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t it
     float range = schedule.initial_range;
     float normal_range = schedule.normal_range;
     for (int trial = 0; trial < trials; ++trial, range *= 0.5f, normal_range *= 0.5f) {
-      if (confident && range > schedule.confident_max_range) continue;
+      if (confident && trial < wide) continue;
       float u[4];
       for (int c = 0; c < 4; ++c) {
         u[c] = pms_random_unit(in.seed, view, index, iteration, pms_search_trial_key(trial, c));
