@@ -25,7 +25,9 @@ step() { echo "[$(date +%H:%M:%S)] $*" >&2; }
 step "building"
 cmake --build build -j"$(nproc)" >/dev/null
 commit="\`$(git rev-parse --short HEAD)\`"
-git diff --quiet HEAD -- . 2>/dev/null || commit="$commit with uncommitted changes"
+# Code changes only: docs/ holds benchmark outputs, which the other benchmark script may
+# have just rewritten.
+git diff --quiet HEAD -- . ":(exclude)docs" 2>/dev/null || commit="$commit with uncommitted changes"
 rm -rf "$runs"
 mkdir -p "$runs" "$out"
 
