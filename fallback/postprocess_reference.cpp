@@ -95,4 +95,42 @@ std::vector<float> weighted_median_all(const std::vector<float>& disparity,
                          threads);
 }
 
+std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity, int width,
+                                             int height, float max_step, int min_size) {
+  // Breadth-first search of each segment once; the kernels find the same segments by
+  // label propagation (small_segments.cl), and the mask does not depend on the method.
+  std::vector<std::uint8_t> large(disparity.size(), 1);
+  if (min_size <= 0) return large;
+  std::vector<std::uint8_t> seen(disparity.size(), 0);
+  std::vector<int> segment;
+  for (int start = 0; start < width * height; ++start) {
+    if (seen[start]) continue;
+    segment.assign(1, start);
+    seen[start] = 1;
+    for (size_t next = 0; next < segment.size(); ++next) {
+      const int p = segment[next];
+      const int x = p % width;
+      const int y = p / width;
+      const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+      for (const auto& n : neighbours) {
+        if (n[0] < 0 || n[0] >= width || n[1] < 0 || n[1] >= height) continue;
+        const int q = n[1] * width + n[0];
+        if (seen[q] || !pms_segment_joined(disparity[p], disparity[q], max_step)) continue;
+        seen[q] = 1;
+        segment.push_back(q);
+      }
+    }
+    if (static_cast<int>(segment.size()) < min_size) {
+      for (int p : segment) large[p] = 0;
+    }
+  }
+  return large;
+}
+
+std::vector<float> flat_planes(const std::vector<float>& disparity) {
+  std::vector<float> planes(4 * disparity.size());
+  for (size_t i = 0; i < disparity.size(); ++i) pms_flat_plane(disparity[i], &planes[4 * i]);
+  return planes;
+}
+
 }  // namespace flexsight

@@ -39,4 +39,14 @@ std::vector<float> weighted_median_all(const std::vector<float>& disparity,
                                        const ViewImage& image, const float* weights, int radius,
                                        int threads);
 
+// 1 for every pixel of a segment of at least min_size pixels, 0 in the smaller ones,
+// where a segment joins 4-neighbours whose disparities differ by at most max_step
+// (pms_segment_joined); min_size 0 keeps every pixel. The refill of the small segments
+// takes it as fill_inconsistent's and weighted_median_filled's `consistent`.
+std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity, int width,
+                                             int height, float max_step, int min_size);
+
+// The flat plane (0, 0, d) of every disparity (pms_flat_plane), for fill_inconsistent.
+std::vector<float> flat_planes(const std::vector<float>& disparity);
+
 }  // namespace flexsight

@@ -63,6 +63,9 @@ void StereoParams::check() const {
   require(!std::isnan(median_background_margin) && median_background_margin >= 0,
           "median-background-margin", "must be >= 0 (inf: every consistent pixel votes)");
   require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
+  require(speckle_size >= 0, "speckle-size", "must be >= 0 (0 = off)");
+  require(std::isfinite(speckle_range) && speckle_range >= 0, "speckle-range",
+          "must be a finite number >= 0");
   require(final_median_window >= 1 && final_median_window % 2 == 1 && final_median_window <= 15,
           "final-median-window", "must be odd and in 1..15 (1 = off)");
   require(std::isfinite(final_median_gamma) && final_median_gamma > 0, "final-median-gamma",

@@ -151,6 +151,20 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
     disparity = weighted_median_all(disparity, pyramid[PMS_VIEW_LEFT][0], final_weights.data(),
                                     params.final_median_window / 2, threads);
   }
+  if (params.speckle_size > 0) {
+    // Small segments are refilled like inconsistent pixels, from the pixels around them.
+    const std::vector<std::uint8_t> kept = large_segment_mask(
+        disparity, width, height, params.speckle_range, params.speckle_size);
+    PlaneField flat;
+    flat.width = width;
+    flat.height = height;
+    flat.planes = fill_inconsistent(flat_planes(disparity), kept, width, height, INFINITY,
+                                    threads);
+    disparity = weighted_median_filled(plane_disparities(flat, threads), kept,
+                                       pyramid[PMS_VIEW_LEFT][0], median_weights.data(),
+                                       params.median_window / 2, params.window_step,
+                                       params.median_background_margin, threads);
+  }
   clamp_to_disparity_range(disparity, params);
   result.timings.push_back({"post-processing", seconds_since(start)});
 

@@ -155,4 +155,21 @@ PMS_INLINE float pms_weighted_median(const float* values, const float* weights,
   return sorted_values[lo];
 }
 
+/* Small segments (speckles): two 4-neighbours belong to one segment when their
+ * disparities differ by at most max_step. A segment of fewer than min_size pixels is
+ * an island PatchMatch left (one wrong plane that spread a little), too large for the
+ * 7x7 final median; it is refilled like a pixel that failed the left/right check. */
+PMS_INLINE int pms_segment_joined(float d, float d_neighbour, float max_step) {
+  return PMS_FABS(d - d_neighbour) <= max_step;
+}
+
+/* The flat plane (0, 0, d): a constant disparity, which pms_fill_pixel copies exactly
+ * (0 x + 0 y + d = d), so that refilling a segment takes its neighbour's disparity. */
+PMS_INLINE void pms_flat_plane(float d, PMS_GLOBAL float* plane) {
+  plane[0] = 0.0f;
+  plane[1] = 0.0f;
+  plane[2] = d;
+  plane[3] = 0.0f;
+}
+
 #endif /* FLEXSIGHT_POSTPROCESS_MATH_H */

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <random>
+#include <string>
 
 #include "fallback/postprocess_reference.h"
 #include "fallback/weight_table.h"
@@ -215,4 +216,69 @@ TEST(Confidence, IsOneOverOnePlusDisagreement) {
   EXPECT_EQ(pms_confidence(left.data(), right.data(), 4, 2, 0, -1.0f), 0.0f);
   EXPECT_FLOAT_EQ(pms_confidence(left.data(), right.data(), 4, 3, 0, -1.0f), 1.0f / 3.0f);
   EXPECT_EQ(pms_confidence(left.data(), right.data(), 4, 1, 0, -1.0f), 1.0f);
+}
+
+// A map from rows of text: '.' is disparity 0, a digit k is disparity 10 + k.
+static std::vector<float> map_from_rows(const std::vector<std::string>& rows) {
+  std::vector<float> d;
+  for (const auto& row : rows) {
+    for (char c : row) d.push_back(c == '.' ? 0.0f : 10.0f + static_cast<float>(c - '0'));
+  }
+  return d;
+}
+
+TEST(LargeSegmentMask, MarksOnlySegmentsBelowTheSize) {
+  // A 3-pixel island (an L, 4-connected) and a single pixel in a background of 0.
+  const std::vector<float> d = map_from_rows({"......",
+                                              ".00...",
+                                              ".0....",
+                                              "....0.",
+                                              "......"});
+  const auto mask = large_segment_mask(d, 6, 5, 1.0f, 4);
+  for (size_t i = 0; i < d.size(); ++i) {
+    EXPECT_EQ(mask[i], d[i] == 0.0f ? 1 : 0) << "pixel " << i;
+  }
+  // Size 3: the L is kept, the single pixel is not; size 1 and 0 keep everything.
+  const auto three = large_segment_mask(d, 6, 5, 1.0f, 3);
+  EXPECT_EQ(three[1 * 6 + 1], 1);
+  EXPECT_EQ(three[3 * 6 + 4], 0);
+  EXPECT_EQ(large_segment_mask(d, 6, 5, 1.0f, 1), std::vector<std::uint8_t>(d.size(), 1));
+  EXPECT_EQ(large_segment_mask(d, 6, 5, 1.0f, 0), std::vector<std::uint8_t>(d.size(), 1));
+}
+
+TEST(LargeSegmentMask, JoinsFourNeighboursWithinTheStepOnly) {
+  // Two pixels that touch only diagonally are two segments of one pixel each.
+  const std::vector<float> diagonal = map_from_rows({"0..", ".0.", "..."});
+  const auto mask = large_segment_mask(diagonal, 3, 3, 1.0f, 2);
+  EXPECT_EQ(mask[0], 0);
+  EXPECT_EQ(mask[4], 0);
+  EXPECT_EQ(mask[8], 1);
+  // A ramp rising 0.5 per pixel is one segment with a step of 0.5, none below it.
+  std::vector<float> ramp(8);
+  for (int x = 0; x < 8; ++x) ramp[x] = 0.5f * static_cast<float>(x);
+  EXPECT_EQ(large_segment_mask(ramp, 8, 1, 0.5f, 8), std::vector<std::uint8_t>(8, 1));
+  EXPECT_EQ(large_segment_mask(ramp, 8, 1, 0.25f, 2), std::vector<std::uint8_t>(8, 0));
+}
+
+TEST(LargeSegmentMask, RefillGivesAnIslandTheDisparityAroundIt) {
+  // The refill of the pipeline: flat planes, background filling from the kept pixels,
+  // then the hole median voting the kept ones. A 2x2 island of 15 in a field of 3.
+  const int w = 8, h = 6;
+  std::vector<float> d(w * h, 3.0f);
+  for (int y = 2; y < 4; ++y) {
+    for (int x = 3; x < 5; ++x) d[y * w + x] = 15.0f;
+  }
+  const auto kept = large_segment_mask(d, w, h, 1.0f, 5);
+  const auto planes = fill_inconsistent(flat_planes(d), kept, w, h, INFINITY, 1);
+  for (int i = 0; i < w * h; ++i) {
+    EXPECT_EQ(planes[4 * i + 0], 0.0f);
+    EXPECT_EQ(planes[4 * i + 1], 0.0f);
+    EXPECT_EQ(planes[4 * i + 2], 3.0f) << "pixel " << i;  // the island took its neighbours'
+  }
+  ViewImage image = make_view_image(cv::Mat(h, w, CV_8UC3, cv::Scalar(50, 50, 50)));
+  auto weights = make_support_weight_table(10.0f);
+  std::vector<float> filled(w * h);
+  for (int i = 0; i < w * h; ++i) filled[i] = planes[4 * i + 2];
+  EXPECT_EQ(weighted_median_filled(filled, kept, image, weights.data(), 2, 1, 2.0f, 1),
+            std::vector<float>(w * h, 3.0f));
 }

@@ -44,10 +44,13 @@ SceneScores score_fixture(StereoMethod method) {
 // 1.88 -> 1.53), PMS (no confidence) unchanged; on the 15 scenes PPMS 11.58 -> 11.60 %
 // in 0.83x the time. Then the confidence refreshed after each finer-level iteration and
 // confident pixels' random search limited to 1 px: PPMS here 3.81 -> 3.84 % (nonocc
-// 1.53 -> 1.65); on the 15 scenes 11.60 -> 11.44 %.
-constexpr double kRecordedPpmsBad2All = 3.84;
-constexpr double kRecordedPpmsBad2Nonocc = 1.65;
-constexpr double kRecordedPmsBad2All = 4.32;
+// 1.53 -> 1.65); on the 15 scenes 11.60 -> 11.44 %. Later: segments under 100 px
+// refilled (speckle_size): PPMS here 3.84 -> 3.86 % (nonocc 1.65 -> 1.66), PMS 4.32 ->
+// 4.33 % (this half-size crop has few islands that large); on the 15 scenes 11.44 ->
+// 11.32 %.
+constexpr double kRecordedPpmsBad2All = 3.86;
+constexpr double kRecordedPpmsBad2Nonocc = 1.66;
+constexpr double kRecordedPmsBad2All = 4.33;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
 }  // namespace

@@ -110,6 +110,10 @@ const std::vector<ParamOption>& param_options() {
                      &StereoParams::final_median_window),
       float_option("final-median-gamma", "its colour bandwidth",
                    &StereoParams::final_median_gamma),
+      integer_option("speckle-size", "refill segments smaller than this (px, 0 = off)",
+                     &StereoParams::speckle_size),
+      float_option("speckle-range", "their neighbours' largest disparity step (px)",
+                   &StereoParams::speckle_range),
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
          long value = parse_integer("seed", v);

@@ -27,6 +27,7 @@ extern const KernelSource upsample_nearest;
 extern const KernelSource left_right_check;
 extern const KernelSource fill_inconsistent;
 extern const KernelSource weighted_median;
+extern const KernelSource small_segments;
 }  // namespace kernel_sources
 
 }  // namespace flexsight::opencl

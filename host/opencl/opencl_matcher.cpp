@@ -282,6 +282,27 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
                                params.final_median_window / 2, filled_disparity);
     final_disparity = &filled_disparity;
   }
+  Buffer<float> refilled;
+  if (params.speckle_size > 0) {
+    // Small segments are refilled like inconsistent pixels (see the reference path). The
+    // right view's planes are no longer needed: the refill's planes go there.
+    Buffer<std::uint8_t> kept(context, pixels, "large segments");
+    stages.large_segment_mask(*final_disparity, width, height, params.speckle_range,
+                              params.speckle_size, kept);
+    DeviceField flat{width, height, Buffer<float>(context, 4 * pixels, "flat planes"),
+                     Buffer<float>()};
+    stages.flat_planes(*final_disparity, width, height, flat.planes);
+    DeviceField& flat_filled = fields[PMS_VIEW_RIGHT];
+    stages.fill_inconsistent(flat.planes, kept, width, height, INFINITY, flat_filled.planes);
+    flat.planes = Buffer<float>();
+    Buffer<float> flat_disparity(context, pixels, "refill's filled disparity");
+    stages.plane_disparities(flat_filled, flat_disparity);
+    refilled = Buffer<float>(context, pixels, "refilled disparity");
+    stages.weighted_median_filled(flat_disparity, kept, pyramid[PMS_VIEW_LEFT][0],
+                                  median_weights, params.median_window / 2, params.window_step,
+                                  params.median_background_margin, refilled);
+    final_disparity = &refilled;
+  }
   std::vector<float> disparity = final_disparity->read();
   clamp_to_disparity_range(disparity, params);
   const std::vector<float> raw_left = raw[PMS_VIEW_LEFT].read();

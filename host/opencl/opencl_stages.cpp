@@ -76,7 +76,13 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       list_unsure_pixels_(make_kernel(src::list_unsure_pixels, "list_unsure_pixels")),
       upsample_nearest_(make_kernel(src::upsample_nearest, "upsample_nearest")),
       left_right_check_(make_kernel(src::left_right_check, "left_right_check")),
-      fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")) {}
+      fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")),
+      segment_init_(make_kernel(src::small_segments, "segment_init")),
+      segment_merge_(make_kernel(src::small_segments, "segment_merge")),
+      segment_flatten_(make_kernel(src::small_segments, "segment_flatten")),
+      segment_count_(make_kernel(src::small_segments, "segment_count")),
+      segment_large_mask_(make_kernel(src::small_segments, "segment_large_mask")),
+      flat_planes_(make_kernel(src::small_segments, "flat_planes")) {}
 
 Kernel OpenClStages::make_kernel(const KernelSource& source, const char* name,
                                  const std::string& options) {
@@ -318,6 +324,42 @@ void OpenClStages::weighted_median_all(const Buffer<float>& disparity, const Dev
   Kernel& kernel = median_kernel("weighted_median_all", 2 * radius + 1);
   kernel.set_args(disparity, image.color, weights, image.width, image.height, radius, filtered);
   launch(kernel, image.width, image.height);
+}
+
+void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width, int height,
+                                      float max_step, int min_size,
+                                      Buffer<std::uint8_t>& large) {
+  const long long pixels = 1LL * width * height;
+  require_size(disparity, pixels, "large_segment_mask");
+  require_size(large, pixels, "large_segment_mask");
+  Buffer<int> labels(context_, static_cast<size_t>(pixels), "segment labels");
+  Buffer<int> counts(context_, static_cast<size_t>(pixels), "segment sizes");
+  Buffer<int> changed(context_, 1, "segment merge flag");
+  segment_init_.set_args(width, height, labels, counts);
+  launch(segment_init_, width, height);
+  segment_merge_.set_args(disparity, width, height, max_step, labels, changed);
+  segment_flatten_.set_args(width, height, labels);
+  // Every round links at least one root under another, so this ends; in practice it
+  // takes a few rounds more than log2 of the longest segment.
+  for (;;) {
+    changed.fill(0);
+    launch(segment_merge_, width, height);
+    launch(segment_flatten_, width, height);
+    if (changed.read()[0] == 0) break;
+  }
+  segment_count_.set_args(width, height, labels, counts);
+  launch(segment_count_, width, height);
+  segment_large_mask_.set_args(width, height, labels, counts, min_size, large);
+  launch(segment_large_mask_, width, height);
+}
+
+void OpenClStages::flat_planes(const Buffer<float>& disparity, int width, int height,
+                               Buffer<float>& planes) {
+  const long long pixels = 1LL * width * height;
+  require_size(disparity, pixels, "flat_planes");
+  require_size(planes, 4 * pixels, "flat_planes");
+  flat_planes_.set_args(disparity, width, height, planes);
+  launch(flat_planes_, width, height);
 }
 
 Kernel& OpenClStages::median_kernel(const std::string& name, int side) {

@@ -68,6 +68,11 @@ class OpenClStages {
                               float background_margin, Buffer<float>& filtered);
   void weighted_median_all(const Buffer<float>& disparity, const DeviceView& image,
                            const Buffer<float>& weights, int radius, Buffer<float>& filtered);
+  // large_segment_mask and flat_planes (small_segments.cl). The mask takes a few
+  // merge/flatten rounds, each ending in a blocking read of one flag.
+  void large_segment_mask(const Buffer<float>& disparity, int width, int height,
+                          float max_step, int min_size, Buffer<std::uint8_t>& large);
+  void flat_planes(const Buffer<float>& disparity, int width, int height, Buffer<float>& planes);
 
  private:
   Kernel make_kernel(const KernelSource& source, const char* name,
@@ -93,7 +98,8 @@ class OpenClStages {
   Kernel downsample_color_, compute_gradient_, pack_match_samples_, init_random_planes_,
       evaluate_costs_, propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, list_unsure_pixels_, upsample_nearest_,
-      left_right_check_, fill_inconsistent_;
+      left_right_check_, fill_inconsistent_, segment_init_, segment_merge_, segment_flatten_,
+      segment_count_, segment_large_mask_, flat_planes_;
   // The work list of the unsure pixels' extra search steps, reused between launches.
   Buffer<int> unsure_list_;
   Buffer<int> unsure_counts_;

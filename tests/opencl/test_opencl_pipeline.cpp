@@ -25,6 +25,8 @@ struct PipelineCase {
   int window_step_fine = 4;  // StereoParams' default
   int refresh_confidence = 1;
   int iterations_fine = 2;
+  int speckle_size = 100;  // StereoParams' default
+  float speckle_range = 1.0f;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -60,6 +62,8 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.window_step_fine = c.window_step_fine;
   params.refresh_confidence = c.refresh_confidence;
   params.iterations_fine = c.iterations_fine;
+  params.speckle_size = c.speckle_size;
+  params.speckle_range = c.speckle_range;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -129,7 +133,11 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_carried_confidence_only", StereoMethod::PPMS, 11,
                                    11, 32, 1, 2.0f, 2.0f, 4, 0},
                       PipelineCase{"ppms_w11_three_fine_iterations", StereoMethod::PPMS, 11, 11,
-                                   32, 1, 2.0f, 2.0f, 4, 1, 3}),
+                                   32, 1, 2.0f, 2.0f, 4, 1, 3},
+                      PipelineCase{"ppms_w11_no_speckle_refill", StereoMethod::PPMS, 11, 11, 32,
+                                   1, 2.0f, 2.0f, 4, 1, 2, 0},
+                      PipelineCase{"ppms_w11_large_fine_speckles", StereoMethod::PPMS, 11, 11,
+                                   32, 1, 2.0f, 2.0f, 4, 1, 2, 400, 0.5f}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -2,6 +2,7 @@
 // byte, with a guard region after every output; inputs from tests/kernel_cases.h.
 #include <gtest/gtest.h>
 #include <cfloat>
+#include <random>
 
 #include "fallback/postprocess_reference.h"
 #include "opencl_test_support.h"
@@ -80,6 +81,55 @@ TEST_P(PostProcessStage, WeightedMedianAll) {
                                  radius, filtered);
     EXPECT_TRUE(same_buffer(expected, filtered)) << "radius " << radius;
   }
+}
+
+// Disparity maps with segments of many sizes. 0: diagonal bands 1.5 px apart with
+// random islands 5 px above them; 1: one constant segment; 2: a serpentine path of 0
+// through a field of 5, one segment that takes many merge rounds to join.
+std::vector<float> segment_map(int width, int height, std::uint32_t seed, int kind) {
+  std::mt19937 rng(seed);
+  std::bernoulli_distribution island(0.1);
+  std::vector<float> d(static_cast<size_t>(width) * height, 7.0f);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float& v = d[y * width + x];
+      if (kind == 0) {
+        v = 1.5f * static_cast<float>((x + 2 * y) / 7) + (island(rng) ? 5.0f : 0.0f);
+      } else if (kind == 2) {
+        const bool open_row = y % 2 == 0;
+        const bool link = (y % 4 == 1 && x == width - 1) || (y % 4 == 3 && x == 0);
+        v = open_row || link ? 0.0f : 5.0f;
+      }
+    }
+  }
+  return d;
+}
+
+TEST_P(PostProcessStage, LargeSegmentMask) {
+  const LevelCase c = GetParam();
+  for (int kind : {0, 1, 2}) {
+    const std::vector<float> d = segment_map(c.width, c.height, c.seed, kind);
+    const Buffer<float> disparity = guarded(d, "disparity");
+    for (float max_step : {0.0f, 1.0f, 2.0f}) {
+      for (int min_size : {0, 1, 2, 5, 40, c.width * c.height}) {
+        const std::vector<std::uint8_t> expected =
+            large_segment_mask(d, c.width, c.height, max_step, min_size);
+        Buffer<std::uint8_t> large = guarded_output<std::uint8_t>(expected.size(), "large");
+        stages().large_segment_mask(disparity, c.width, c.height, max_step, min_size, large);
+        EXPECT_TRUE(same_buffer(expected, large))
+            << "map " << kind << ", step " << max_step << ", size " << min_size;
+      }
+    }
+  }
+}
+
+TEST_P(PostProcessStage, FlatPlanes) {
+  const LevelCase c = GetParam();
+  const DisparityPair pair = random_disparities(c.width, c.height, c.ndisp, c.seed);
+  const std::vector<float> expected = flat_planes(pair.left);
+  Buffer<float> planes = guarded_output<float>(expected.size(), "planes");
+  stages().flat_planes(guarded(pair.left, "disparity"), c.width, c.height, planes);
+  EXPECT_TRUE(same_buffer(expected, planes));
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, PostProcessStage, ::testing::ValuesIn(level_cases()),
