@@ -127,6 +127,10 @@ std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity
   return large;
 }
 
+void mask_and(std::vector<std::uint8_t>& mask, const std::vector<std::uint8_t>& other) {
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = mask[i] && other[i] ? 1 : 0;
+}
+
 std::vector<float> flat_planes(const std::vector<float>& disparity) {
   std::vector<float> planes(4 * disparity.size());
   for (size_t i = 0; i < disparity.size(); ++i) pms_flat_plane(disparity[i], &planes[4 * i]);

@@ -46,6 +46,9 @@ std::vector<float> weighted_median_all(const std::vector<float>& disparity,
 std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity, int width,
                                              int height, float max_step, int min_size);
 
+// mask[i] becomes 0 wherever other[i] is 0 (the kernels' mask_and).
+void mask_and(std::vector<std::uint8_t>& mask, const std::vector<std::uint8_t>& other);
+
 // The flat plane (0, 0, d) of every disparity (pms_flat_plane), for fill_inconsistent.
 std::vector<float> flat_planes(const std::vector<float>& disparity);
 

@@ -64,6 +64,7 @@ void StereoParams::check() const {
           "median-background-margin", "must be >= 0 (inf: every consistent pixel votes)");
   require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
   require(speckle_size >= 0, "speckle-size", "must be >= 0 (0 = off)");
+  require(raw_speckle_size >= 0, "raw-speckle-size", "must be >= 0 (0 = off)");
   require(std::isfinite(speckle_range) && speckle_range >= 0, "speckle-range",
           "must be a finite number >= 0");
   require(final_median_window >= 1 && final_median_window % 2 == 1 && final_median_window <= 15,

@@ -133,9 +133,13 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
   const int height = left_rgb8.rows;
   const std::vector<float> raw_left = plane_disparities(fields[PMS_VIEW_LEFT], threads);
   const std::vector<float> raw_right = plane_disparities(fields[PMS_VIEW_RIGHT], threads);
-  const std::vector<std::uint8_t> consistent =
+  std::vector<std::uint8_t> consistent =
       left_right_check(raw_left, raw_right, width, height, PMS_VIEW_LEFT, params.lr_tolerance,
                        threads);
+  if (params.raw_speckle_size > 0) {
+    mask_and(consistent, large_segment_mask(raw_left, width, height, params.speckle_range,
+                                            params.raw_speckle_size));
+  }
   PlaneField filled;
   filled.width = width;
   filled.height = height;

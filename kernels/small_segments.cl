@@ -66,6 +66,15 @@ __kernel void segment_large_mask(int width, int height, const __global int* labe
   large[p] = counts[labels[p]] >= min_size ? 1 : 0;
 }
 
+/* mask &= other, per pixel (reference: mask_and). */
+__kernel void mask_and(const __global uchar* other, int width, int height,
+                       __global uchar* mask) {
+  int x, y;
+  if (!pms_dense_pixel(width, height, &x, &y)) return;
+  const int p = y * width + x;
+  mask[p] = mask[p] && other[p] ? 1 : 0;
+}
+
 /* (0, 0, d, 0) per pixel (reference: flat_planes). */
 __kernel void flat_planes(const __global float* disparity, int width, int height,
                           __global float* planes) {

@@ -282,3 +282,9 @@ TEST(LargeSegmentMask, RefillGivesAnIslandTheDisparityAroundIt) {
   EXPECT_EQ(weighted_median_filled(filled, kept, image, weights.data(), 2, 1, 2.0f, 1),
             std::vector<float>(w * h, 3.0f));
 }
+
+TEST(MaskAnd, ClearsWhereTheOtherIsZero) {
+  std::vector<std::uint8_t> mask = {1, 1, 0, 0};
+  mask_and(mask, {1, 0, 1, 0});
+  EXPECT_EQ(mask, (std::vector<std::uint8_t>{1, 0, 0, 0}));
+}

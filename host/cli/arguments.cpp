@@ -114,6 +114,9 @@ const std::vector<ParamOption>& param_options() {
                      &StereoParams::speckle_size),
       float_option("speckle-range", "their neighbours' largest disparity step (px)",
                    &StereoParams::speckle_range),
+      integer_option("raw-speckle-size",
+                     "raw segments smaller than this fail the left/right check (px, 0 = off)",
+                     &StereoParams::raw_speckle_size),
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
          long value = parse_integer("seed", v);

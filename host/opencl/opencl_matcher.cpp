@@ -261,6 +261,12 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
   Buffer<std::uint8_t> consistent(context, pixels, "consistent");
   stages.left_right_check(raw[PMS_VIEW_LEFT], raw[PMS_VIEW_RIGHT], width, height, PMS_VIEW_LEFT,
                           params.lr_tolerance, consistent);
+  if (params.raw_speckle_size > 0) {
+    Buffer<std::uint8_t> large(context, pixels, "large raw segments");
+    stages.large_segment_mask(raw[PMS_VIEW_LEFT], width, height, params.speckle_range,
+                              params.raw_speckle_size, large);
+    stages.mask_and(large, width, height, consistent);
+  }
   DeviceField filled{width, height, Buffer<float>(context, 4 * pixels, "filled planes"),
                      Buffer<float>()};
   stages.fill_inconsistent(fields[PMS_VIEW_LEFT].planes, consistent, width, height,

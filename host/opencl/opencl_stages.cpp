@@ -82,7 +82,8 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       segment_flatten_(make_kernel(src::small_segments, "segment_flatten")),
       segment_count_(make_kernel(src::small_segments, "segment_count")),
       segment_large_mask_(make_kernel(src::small_segments, "segment_large_mask")),
-      flat_planes_(make_kernel(src::small_segments, "flat_planes")) {}
+      flat_planes_(make_kernel(src::small_segments, "flat_planes")),
+      mask_and_(make_kernel(src::small_segments, "mask_and")) {}
 
 Kernel OpenClStages::make_kernel(const KernelSource& source, const char* name,
                                  const std::string& options) {
@@ -360,6 +361,15 @@ void OpenClStages::flat_planes(const Buffer<float>& disparity, int width, int he
   require_size(planes, 4 * pixels, "flat_planes");
   flat_planes_.set_args(disparity, width, height, planes);
   launch(flat_planes_, width, height);
+}
+
+void OpenClStages::mask_and(const Buffer<std::uint8_t>& other, int width, int height,
+                            Buffer<std::uint8_t>& mask) {
+  const long long pixels = 1LL * width * height;
+  require_size(other, pixels, "mask_and");
+  require_size(mask, pixels, "mask_and");
+  mask_and_.set_args(other, width, height, mask);
+  launch(mask_and_, width, height);
 }
 
 Kernel& OpenClStages::median_kernel(const std::string& name, int side) {

@@ -73,6 +73,8 @@ class OpenClStages {
   void large_segment_mask(const Buffer<float>& disparity, int width, int height,
                           float max_step, int min_size, Buffer<std::uint8_t>& large);
   void flat_planes(const Buffer<float>& disparity, int width, int height, Buffer<float>& planes);
+  void mask_and(const Buffer<std::uint8_t>& other, int width, int height,
+                Buffer<std::uint8_t>& mask);
 
  private:
   Kernel make_kernel(const KernelSource& source, const char* name,
@@ -99,7 +101,7 @@ class OpenClStages {
       evaluate_costs_, propagate_spatial_, propagate_view_, refine_random_, carry_planes_to_finer_,
       plane_disparities_, lr_confidence_, list_unsure_pixels_, upsample_nearest_,
       left_right_check_, fill_inconsistent_, segment_init_, segment_merge_, segment_flatten_,
-      segment_count_, segment_large_mask_, flat_planes_;
+      segment_count_, segment_large_mask_, flat_planes_, mask_and_;
   // The work list of the unsure pixels' extra search steps, reused between launches.
   Buffer<int> unsure_list_;
   Buffer<int> unsure_counts_;

@@ -27,6 +27,7 @@ struct PipelineCase {
   int iterations_fine = 2;
   int speckle_size = 100;  // StereoParams' default
   float speckle_range = 1.0f;
+  int raw_speckle_size = 20;  // StereoParams' default
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -64,6 +65,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.iterations_fine = c.iterations_fine;
   params.speckle_size = c.speckle_size;
   params.speckle_range = c.speckle_range;
+  params.raw_speckle_size = c.raw_speckle_size;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -135,7 +137,9 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_three_fine_iterations", StereoMethod::PPMS, 11, 11,
                                    32, 1, 2.0f, 2.0f, 4, 1, 3},
                       PipelineCase{"ppms_w11_no_speckle_refill", StereoMethod::PPMS, 11, 11, 32,
-                                   1, 2.0f, 2.0f, 4, 1, 2, 0},
+                                   1, 2.0f, 2.0f, 4, 1, 2, 0, 1.0f, 0},
+                      PipelineCase{"ppms_w11_raw_speckles_only", StereoMethod::PPMS, 11, 11, 32,
+                                   1, 2.0f, 2.0f, 4, 1, 2, 0, 1.0f, 60},
                       PipelineCase{"ppms_w11_large_fine_speckles", StereoMethod::PPMS, 11, 11,
                                    32, 1, 2.0f, 2.0f, 4, 1, 2, 400, 0.5f}),
     [](const auto& info) { return std::string(info.param.name); });

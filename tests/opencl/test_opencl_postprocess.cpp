@@ -123,6 +123,16 @@ TEST_P(PostProcessStage, LargeSegmentMask) {
   }
 }
 
+TEST_P(PostProcessStage, MaskAnd) {
+  const LevelCase c = GetParam();
+  const std::vector<std::uint8_t> other = random_consistency(c.width, c.height, c.seed);
+  std::vector<std::uint8_t> expected = random_consistency(c.width, c.height, c.seed + 7);
+  Buffer<std::uint8_t> mask = guarded(expected, "mask");
+  mask_and(expected, other);
+  stages().mask_and(guarded(other, "other"), c.width, c.height, mask);
+  EXPECT_TRUE(same_buffer(expected, mask));
+}
+
 TEST_P(PostProcessStage, FlatPlanes) {
   const LevelCase c = GetParam();
   const DisparityPair pair = random_disparities(c.width, c.height, c.ndisp, c.seed);
