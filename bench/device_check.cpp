@@ -102,7 +102,12 @@ int run(int argc, char** argv) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     if (arg == "--repeat" && has_value) {
-      repeat = std::stoi(argv[++i]);
+      const std::string value = argv[++i];
+      const bool digits = value.find_first_not_of("0123456789") == std::string::npos;
+      if (value.empty() || value.size() > 6 || !digits) {
+        throw InputError("--repeat", "expected a whole number, got '" + value + "'");
+      }
+      repeat = std::stoi(value);
     } else if (arg == "--reference" && has_value) {
       reference = std::string(argv[++i]) != "0";
     } else if (arg == "--cl-platform" && has_value) {

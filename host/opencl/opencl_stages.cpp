@@ -340,8 +340,9 @@ void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width,
   launch(segment_init_, width, height);
   segment_merge_.set_args(disparity, width, height, max_step, labels, changed);
   segment_flatten_.set_args(width, height, labels);
-  // Every round links at least one root under another, so this ends; in practice it
-  // takes a few rounds more than log2 of the longest segment.
+  // Every round that reports a change links at least one root under another, so this
+  // ends (on PoCL, Motorcycle's mask after the final median took 2 rounds; a GPU that
+  // runs the work items in another order may need more).
   for (;;) {
     changed.fill(0);
     launch(segment_merge_, width, height);
