@@ -339,11 +339,44 @@ inline pms_uintv pms_popcount_v(pms_uintv v) {
   return (v * 0x01010101U) >> 24;
 }
 
-/* pms_plane_cost of plane (a[l], b[l], c[l]) at (x[l], py) for every lane, within the
- * early-exit rule above. Lanes with bound[l] <= 0 are ignored (pass 0 for unused). */
-inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes, int py,
-                                 const float* a_in, const float* b_in, const float* c_in,
-                                 const float* bound_in) {
+/* One candidate plane per lane for a batched evaluation: the kernels fill it lane by
+ * lane with the reference's per-pixel rules, then pms_batch_offer costs every trying
+ * lane at once and offers the result to that lane's best plane. */
+typedef struct {
+  float a[PMS_LANES];
+  float b[PMS_LANES];
+  float c[PMS_LANES];
+  float bound[PMS_LANES];
+  int tries[PMS_LANES];
+  int any;
+} PmsCandidateBatch;
+
+/* The most candidate batches one window pass evaluates (pms_cost_lanes_group). The host
+ * builds propagate_spatial with its group size (-DPMS_SPATIAL_GROUP, OpenClStages); the
+ * other cost kernels pass one batch at a time. */
+#ifndef PMS_SPATIAL_GROUP
+#define PMS_SPATIAL_GROUP 8
+#endif
+#if PMS_SPATIAL_GROUP < 1 || PMS_SPATIAL_GROUP > 8
+#error "PMS_SPATIAL_GROUP must be 1 to 8"
+#endif
+
+/* pms_plane_cost of plane (a[l], b[l], c[l]) of each of `count` batches (at most
+ * PMS_SPATIAL_GROUP; a constant at every call site, so the unused slots compile away)
+ * at (x[l], py) for every lane, within the early-exit rule above; costs[k] of batch k.
+ * Lanes with bound[l] <= 0 are ignored (pass 0 for unused).
+ *
+ * One window pass serves every batch: the view's own samples (colours, gradients,
+ * census, support weights) do not depend on the plane, so they are loaded once per
+ * window pixel and only the other view's samples are per batch. Each batch's sums run
+ * in pms_plane_cost's order, so its costs keep their bits; the pass stops when every
+ * lane of every batch has reached its bound. Batches evaluated together are bounded by
+ * the best costs from before any of them, not by what the earlier ones improved:
+ * the caller offers them in order afterwards, and a cost that a tighter bound would
+ * have cut off is >= that bound either way (pms_group_offer). */
+__attribute__((always_inline)) inline void pms_cost_lanes_group(
+    const PmsCostInputs* in, const PmsLanes* lanes, int py, const PmsCandidateBatch* batches,
+    const int count, pms_floatv* costs) {
   const int width = in->width;
   const int height = in->height;
   const int radius = in->params.radius;
@@ -355,10 +388,17 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
   const float tau_gradient = in->params.tau_gradient;
   const float census_weight = in->params.census_weight;
   const __global float* restrict weights = in->weights;
-  const pms_floatv a = PMS_VLOAD(0, a_in);
-  const pms_floatv b = PMS_VLOAD(0, b_in);
-  const pms_floatv c = PMS_VLOAD(0, c_in);
-  const pms_floatv bound = PMS_VLOAD(0, bound_in);
+  pms_floatv a[PMS_SPATIAL_GROUP], b[PMS_SPATIAL_GROUP], c[PMS_SPATIAL_GROUP];
+  pms_floatv bound[PMS_SPATIAL_GROUP], sum[PMS_SPATIAL_GROUP], row_term[PMS_SPATIAL_GROUP];
+#pragma unroll
+  for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+    if (k >= count) break;
+    a[k] = PMS_VLOAD(0, batches[k].a);
+    b[k] = PMS_VLOAD(0, batches[k].b);
+    c[k] = PMS_VLOAD(0, batches[k].c);
+    bound[k] = PMS_VLOAD(0, batches[k].bound);
+    sum[k] = (pms_floatv)(0.0f);
+  }
   const int* x = lanes->x;
   const pms_intv px = PMS_VLOAD(0, x);
   /* Checkerboard lanes read their window samples with vector loads (fast path below)
@@ -386,10 +426,12 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
    * which are exactly pms_first_offset(.., -x) .. min(radius, width - 1 - x). */
   const int x_begin = pms_first_offset(radius, step, -radius);
   const float max_x = (float)(width - 1);
-  pms_floatv sum = (pms_floatv)(0.0f);
   for (int dy = y_begin; dy <= y_end; dy += step) {
     const int qy = py + dy;
-    const pms_floatv row_term = b * (float)qy;
+#pragma unroll
+    for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+      if (k < count) row_term[k] = b[k] * (float)qy;
+    }
     const __global float* ref_row = in->ref_color + 4 * qy * width;
     const __global float* ref_grad_row = in->ref_grad + 2 * qy * width;
     const __global float* match_row = in->other_match + PMS_MATCH_RECORD * qy * width;
@@ -401,11 +443,6 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
       const int first_qx = lanes->first + dx;
       const int fast = strided && first_qx >= 0 && first_qx + 2 * (PMS_LANES - 1) <= width - 1;
       const pms_floatv fqx = PMS_TO_FLOATV(qx);
-      const pms_floatv d = a * fqx + row_term + c;
-      const pms_floatv match_x = fmin(fmax(fqx + direction * d, 0.0f), max_x);
-      const pms_floatv x0f = floor(match_x);
-      const pms_intv x0 = PMS_TO_INTV(x0f);
-      const pms_floatv t = match_x - x0f;
       pms_floatv Q0, Q1, Q2, Q3, G0, G1, W;
 #if PMS_LANES == 8
       if (fast) {
@@ -459,41 +496,46 @@ inline pms_floatv pms_cost_lanes(const PmsCostInputs* in, const PmsLanes* lanes,
         W = PMS_VLOAD(0, w);
       }
       W = W * distance_weights[dx < 0 ? -dx : dx]; /* the same for every lane */
-      /* The other view at x0 (x0 is clamped into the row, so every lane's record
-       * exists): values there and the steps to x1 = min(x0 + 1, width - 1). */
-      PmsMatchSamples m;
-      pms_load_match_samples(match_row, x0, &m);
-      /* m0 + t * (m1 - m0) of pms_plane_cost, with m1 - m0 precomputed bit for bit. */
-      const pms_floatv color_diff = fabs(Q0 - (m.r + t * m.dr)) +
-                                    fabs(Q1 - (m.g + t * m.dg)) +
-                                    fabs(Q2 - (m.b + t * m.db));
-      const pms_floatv grad_diff =
-          fabs(G0 - (m.gx + t * m.dgx)) + fabs(G1 - (m.gy + t * m.dgy));
-      const pms_floatv nearest_census = select(m.census1, m.census0, isless(t, 0.5f));
-      const pms_floatv census =
-          PMS_TO_FLOATV(pms_popcount_v(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
-      const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
-                                       alpha * fmin(grad_diff, tau_gradient) +
-                                       census_weight * census;
-      sum = select(sum, sum + W * dissimilarity, inside);
+#pragma unroll
+      for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+        if (k >= count) break;
+        const pms_floatv d = a[k] * fqx + row_term[k] + c[k];
+        const pms_floatv match_x = fmin(fmax(fqx + direction * d, 0.0f), max_x);
+        const pms_floatv x0f = floor(match_x);
+        const pms_intv x0 = PMS_TO_INTV(x0f);
+        const pms_floatv t = match_x - x0f;
+        /* The other view at x0 (x0 is clamped into the row, so every lane's record
+         * exists): values there and the steps to x1 = min(x0 + 1, width - 1). */
+        PmsMatchSamples m;
+        pms_load_match_samples(match_row, x0, &m);
+        /* m0 + t * (m1 - m0) of pms_plane_cost, with m1 - m0 precomputed bit for bit. */
+        const pms_floatv color_diff = fabs(Q0 - (m.r + t * m.dr)) +
+                                      fabs(Q1 - (m.g + t * m.dg)) +
+                                      fabs(Q2 - (m.b + t * m.db));
+        const pms_floatv grad_diff =
+            fabs(G0 - (m.gx + t * m.dgx)) + fabs(G1 - (m.gy + t * m.dgy));
+        const pms_floatv nearest_census = select(m.census1, m.census0, isless(t, 0.5f));
+        const pms_floatv census =
+            PMS_TO_FLOATV(pms_popcount_v(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
+        const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
+                                         alpha * fmin(grad_diff, tau_gradient) +
+                                         census_weight * census;
+        sum[k] = select(sum[k], sum[k] + W * dissimilarity, inside);
+      }
     }
-    if (all(sum >= bound)) return sum;
+    int done = 1;
+#pragma unroll
+    for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+      if (k < count) done = done && all(sum[k] >= bound[k]);
+    }
+    if (done) break;
   }
-  return sum;
+#pragma unroll
+  for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+    if (k < count) costs[k] = sum[k];
+  }
 }
 
-
-/* One candidate plane per lane for a batched evaluation: the kernels fill it lane by
- * lane with the reference's per-pixel rules, then pms_batch_offer costs every trying
- * lane at once and offers the result to that lane's best plane. */
-typedef struct {
-  float a[PMS_LANES];
-  float b[PMS_LANES];
-  float c[PMS_LANES];
-  float bound[PMS_LANES];
-  int tries[PMS_LANES];
-  int any;
-} PmsCandidateBatch;
 
 /* Lane `lane` tries `abc` when `tries`, bounded by its current best cost. */
 inline void pms_batch_set(PmsCandidateBatch* batch, int lane, int tries, const float* abc,
@@ -506,15 +548,43 @@ inline void pms_batch_set(PmsCandidateBatch* batch, int lane, int tries, const f
   batch->bound[lane] = tries ? best->cost : 0.0f;
 }
 
+/* Offers batch k's trying lanes to their best planes, batches in order, as the
+ * reference offers one pixel's candidates one after the other. */
+inline void pms_offer_costs(const PmsCandidateBatch* batches, int count,
+                            const pms_floatv* costs, PmsBestPlane* best) {
+  for (int k = 0; k < count; ++k) {
+    for (int l = 0; l < PMS_LANES; ++l) {
+      if (!batches[k].tries[l]) continue;
+      float candidate[3] = {batches[k].a[l], batches[k].b[l], batches[k].c[l]};
+      pms_best_offer(&best[l], candidate, costs[k][l]);
+    }
+  }
+}
+
 inline void pms_batch_offer(PmsCandidateBatch* batch, const PmsCostInputs* in,
                             const PmsLanes* lanes, int y, PmsBestPlane* best) {
   if (!batch->any) return;
-  pms_floatv costs = pms_cost_lanes(in, lanes, y, batch->a, batch->b, batch->c, batch->bound);
-  for (int l = 0; l < PMS_LANES; ++l) {
-    if (!batch->tries[l]) continue;
-    float candidate[3] = {batch->a[l], batch->b[l], batch->c[l]};
-    pms_best_offer(&best[l], candidate, costs[l]);
-  }
+  pms_floatv costs[1];
+  pms_cost_lanes_group(in, lanes, y, batch, 1, costs);
+  pms_offer_costs(batch, 1, costs, best);
+}
+
+/* PMS_SPATIAL_GROUP batches in one window pass (pms_cost_lanes_group), all bounded by
+ * the best costs from before them (pms_batch_set), then offered in order. The same
+ * planes win as when each is costed after the previous one was offered: a batch whose
+ * cost would win is below every bound it could have had, so its lanes sum the whole
+ * window either way and get the same bits; one that would lose is >= the tighter bound
+ * whether cut off at the looser one or not (costs are sums of terms >= 0), and
+ * pms_best_offer rejects it either way. A plane equal to an earlier batch's winner is
+ * costed again instead of skipped (pms_best_same_as), ties, and is rejected. */
+inline void pms_group_offer(PmsCandidateBatch* batches, const PmsCostInputs* in,
+                            const PmsLanes* lanes, int y, PmsBestPlane* best) {
+  int any = 0;
+  for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) any |= batches[k].any;
+  if (!any) return;
+  pms_floatv costs[PMS_SPATIAL_GROUP];
+  pms_cost_lanes_group(in, lanes, y, batches, PMS_SPATIAL_GROUP, costs);
+  pms_offer_costs(batches, PMS_SPATIAL_GROUP, costs, best);
 }
 
 /* Writes back every active lane's plane (a no-op for lanes whose plane did not change). */
@@ -542,9 +612,10 @@ inline void pms_batch_set_unbounded(PmsCandidateBatch* batch, int lane, int acti
 inline void pms_batch_store_costs(PmsCandidateBatch* batch, const PmsCostInputs* in,
                                   const PmsLanes* lanes, int y, int width,
                                   __global float* cost) {
-  pms_floatv costs = pms_cost_lanes(in, lanes, y, batch->a, batch->b, batch->c, batch->bound);
+  pms_floatv costs[1];
+  pms_cost_lanes_group(in, lanes, y, batch, 1, costs);
   for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes->active[l]) cost[y * width + lanes->x[l]] = costs[l];
+    if (lanes->active[l]) cost[y * width + lanes->x[l]] = costs[0][l];
   }
 }
 

@@ -3,7 +3,7 @@
  * written by this launch (reference: propagate_spatial, whose confidence rule the host
  * applies by launching the near candidates for every pixel of the colour, `list` NULL,
  * then the far ones for the unsure pixels of list_unsure_pixels). Each work item handles
- * PMS_LANES pixels of a row and evaluates their candidates together (pms_cost_lanes). */
+ * PMS_LANES pixels of a row and evaluates their candidates together (pms_cost_lanes_group). */
 #include "pms_kernel_support.h"
 
 __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, int first_candidate,
@@ -18,25 +18,31 @@ __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, int first_cand
   PmsCostInputs in = PMS_COST_INPUTS();
   PmsBestPlane best[PMS_LANES];
   for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
-  for (int candidate = first_candidate; candidate < end_candidate; ++candidate) {
-    int dx = 0;
-    int dy = 0;
-    pms_spatial_offset(candidate, &dx, &dy);
-    int ny = y + dy;
-    if (ny < 0 || ny >= height) continue;
-    PmsCandidateBatch batch;
-    batch.any = 0;
-    for (int l = 0; l < PMS_LANES; ++l) {
-      int nx = lanes.x[l] + dx;
-      float neighbour[3] = {0.0f, 0.0f, 0.0f};
-      int ok = lanes.active[l] && nx >= 0 && nx < width;
-      if (ok) {
-        pms_load_plane(planes, ny * width + nx, neighbour);
-        ok = !pms_best_same_as(&best[l], neighbour); /* its cost here is the one we hold */
+  /* PMS_SPATIAL_GROUP candidates per window pass: their planes are the neighbours'
+   * (of the other colour, unchanged by this launch), not derived from the best one, so
+   * they can be costed together (pms_group_offer). */
+  for (int group = first_candidate; group < end_candidate; group += PMS_SPATIAL_GROUP) {
+    PmsCandidateBatch batches[PMS_SPATIAL_GROUP];
+    for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
+      const int candidate = group + k;
+      int dx = 0;
+      int dy = 0;
+      pms_spatial_offset(candidate, &dx, &dy);
+      const int ny = y + dy;
+      const int row_ok = candidate < end_candidate && ny >= 0 && ny < height;
+      batches[k].any = 0;
+      for (int l = 0; l < PMS_LANES; ++l) {
+        int nx = lanes.x[l] + dx;
+        float neighbour[3] = {0.0f, 0.0f, 0.0f};
+        int ok = row_ok && lanes.active[l] && nx >= 0 && nx < width;
+        if (ok) {
+          pms_load_plane(planes, ny * width + nx, neighbour);
+          ok = !pms_best_same_as(&best[l], neighbour); /* its cost here is the one we hold */
+        }
+        pms_batch_set(&batches[k], l, ok, neighbour, &best[l]);
       }
-      pms_batch_set(&batch, l, ok, neighbour, &best[l]);
     }
-    pms_batch_offer(&batch, &in, &lanes, y, best);
+    pms_group_offer(batches, &in, &lanes, y, best);
   }
   pms_best_store_lanes(best, &lanes, y, width, planes, cost);
 }

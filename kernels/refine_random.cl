@@ -3,7 +3,7 @@
  * refine_random, whose confidence rule the host applies by launching the wide trials for
  * the unsure pixels of list_unsure_pixels, then the others for every pixel of the
  * colour, `list` NULL). Each work item handles PMS_LANES pixels of a row and evaluates
- * their trials together (pms_cost_lanes). */
+ * their trials together (pms_batch_offer). */
 #include "pms_kernel_support.h"
 
 __kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint iteration,

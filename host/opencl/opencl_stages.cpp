@@ -18,6 +18,14 @@ int checked_lanes(int lanes) {
 // The build option that specialises the cost kernels for `lanes` pixels per work item.
 std::string lanes_option(int lanes) { return "-DPMS_LANES=" + std::to_string(lanes); }
 
+std::string spatial_option(int lanes, int group) {
+  if (group < 1 || group > 8) {
+    throw std::invalid_argument("spatial candidate group must be 1 to 8, got " +
+                                std::to_string(group));
+  }
+  return lanes_option(lanes) + " -DPMS_SPATIAL_GROUP=" + std::to_string(group);
+}
+
 // A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
 template <typename T>
 void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
@@ -56,7 +64,8 @@ void require_level(const DeviceLevel& in, const DeviceField& field, const char* 
 
 }  // namespace
 
-OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_lanes)
+OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_lanes,
+                           int spatial_group)
     : context_(context), profiler_(profiler), cost_lanes_(checked_lanes(cost_lanes)),
       downsample_color_(make_kernel(src::build_view, "downsample_color")),
       compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
@@ -66,7 +75,8 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       evaluate_costs_(
           make_kernel(src::evaluate_costs, "evaluate_costs", lanes_option(cost_lanes_))),
       propagate_spatial_(
-          make_kernel(src::propagate_spatial, "propagate_spatial", lanes_option(cost_lanes_))),
+          make_kernel(src::propagate_spatial, "propagate_spatial",
+                      spatial_option(cost_lanes_, spatial_group))),
       propagate_view_(
           make_kernel(src::propagate_view, "propagate_view", lanes_option(cost_lanes_))),
       refine_random_(make_kernel(src::refine_random, "refine_random", lanes_option(cost_lanes_))),

@@ -21,11 +21,18 @@ class OpenClStages {
   // compiles to SIMD code where it could not vectorise across work items. 4, 8 or 16;
   // the result is the same bytes whatever the count (tested).
   static constexpr int kDefaultCostLanes = 8;
+  // Spatial candidates propagate_spatial costs in one pass over the window
+  // (PMS_SPATIAL_GROUP): their own view's samples are loaded once for all of them. 1 to
+  // 8, same bytes whatever the count (tested). Motorcycle (MiddEval3 Q) on PoCL, 2 cores,
+  // propagate_spatial's device time: 1 (one candidate per pass) 7.93 s, 2 6.95 s, 4
+  // 6.28 s, 8 5.79 s (the near and the far rings are 8 candidates each).
+  static constexpr int kDefaultSpatialGroup = 8;
 
   // Builds the programs (or takes them from the context's cache). `profiler` (may be
   // null) receives the event of every launch.
   explicit OpenClStages(Context& context, KernelProfiler* profiler = nullptr,
-                        int cost_lanes = kDefaultCostLanes);
+                        int cost_lanes = kDefaultCostLanes,
+                        int spatial_group = kDefaultSpatialGroup);
 
   Context& context() { return context_; }
 

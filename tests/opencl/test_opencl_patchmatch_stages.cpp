@@ -252,7 +252,57 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(CostLanesOption, RejectsCountsTheKernelsDoNotHave) {
   EXPECT_THROW(OpenClStages(context(), nullptr, 6), std::invalid_argument);
+  EXPECT_THROW(OpenClStages(context(), nullptr, 8, 0), std::invalid_argument);
+  EXPECT_THROW(OpenClStages(context(), nullptr, 8, 9), std::invalid_argument);
 }
+
+// PMS_SPATIAL_GROUP, the spatial candidates costed in one window pass, is a build option
+// too: a group that leaves partial last groups (3) or one candidate at a time (1)
+// give the reference's bytes, with every candidate, and with the confident pixels'
+// near candidates split at a point that falls inside a group (5) or between (8).
+class SpatialGroup : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
+
+OpenClStages& stages_with_spatial_group(int group) {
+  static std::map<int, std::unique_ptr<OpenClStages>> by_group;
+  std::unique_ptr<OpenClStages>& built = by_group[group];
+  if (!built) {
+    built = std::make_unique<OpenClStages>(context(), nullptr, OpenClStages::kDefaultCostLanes,
+                                           group);
+  }
+  return *built;
+}
+
+TEST_P(SpatialGroup, PropagateSpatialMatchesTheReference) {
+  OpenClStages& grouped = stages_with_spatial_group(std::get<0>(GetParam()));
+  const LevelCase& c = std::get<1>(GetParam());
+  LevelFixture f(c);
+  advance(f);
+  const std::vector<float> confidence = random_confidence(f.fields[0].pixels(), c.seed);
+  const Buffer<float> device_confidence = guarded(confidence, "confidence");
+  for (int near : {8, 5}) {
+    SearchSchedule schedule = search_schedule(f.in.ndisp);
+    schedule.confident_spatial_candidates = near;
+    for (int view = 0; view < 2; ++view) {
+      DeviceField field = upload(f.fields[view], "field");
+      for (int colour = 0; colour < 2; ++colour) {
+        const bool with_confidence = colour == 1;
+        propagate_spatial(f.in, view, colour, schedule, with_confidence ? &confidence : nullptr,
+                          f.fields[view]);
+        grouped.propagate_spatial(f.device_in, view, colour, schedule,
+                                  with_confidence ? &device_confidence : nullptr, field);
+        expect_same_field(f.fields[view], field);
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    OneAndThree, SpatialGroup,
+    ::testing::Combine(::testing::Values(1, 3), ::testing::ValuesIn(level_cases())),
+    [](const auto& info) {
+      return std::to_string(std::get<0>(info.param)) + "group_" +
+             case_name(std::get<1>(info.param));
+    });
 
 }  // namespace
 }  // namespace flexsight::opencl::test
