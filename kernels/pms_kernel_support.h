@@ -369,8 +369,8 @@ typedef struct {
  * One window pass serves every batch: the view's own samples (colours, gradients,
  * census, support weights) do not depend on the plane, so they are loaded once per
  * window pixel and only the other view's samples are per batch. Each batch's sums run
- * in pms_plane_cost's order, so its costs keep their bits; the pass stops when every
- * lane of every batch has reached its bound. Batches evaluated together are bounded by
+ * in pms_plane_cost's order, so its costs keep their bits; a batch stops after every
+ * one of its lanes has reached its bound, the pass when every batch has. Batches evaluated together are bounded by
  * the best costs from before any of them, not by what the earlier ones improved:
  * the caller offers them in order afterwards, and a cost that a tighter bound would
  * have cut off is >= that bound either way (pms_group_offer). */
@@ -399,6 +399,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
     bound[k] = PMS_VLOAD(0, batches[k].bound);
     sum[k] = (pms_floatv)(0.0f);
   }
+  int live = (1 << count) - 1; /* bit k: some lane of batch k is still below its bound */
   const int* x = lanes->x;
   const pms_intv px = PMS_VLOAD(0, x);
   /* Checkerboard lanes read their window samples with vector loads (fast path below)
@@ -499,6 +500,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
 #pragma unroll
       for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
         if (k >= count) break;
+        if (!((live >> k) & 1)) continue; /* every lane of batch k reached its bound */
         const pms_floatv d = a[k] * fqx + row_term[k] + c[k];
         const pms_floatv match_x = fmin(fmax(fqx + direction * d, 0.0f), max_x);
         const pms_floatv x0f = floor(match_x);
@@ -523,12 +525,11 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
         sum[k] = select(sum[k], sum[k] + W * dissimilarity, inside);
       }
     }
-    int done = 1;
 #pragma unroll
     for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
-      if (k < count) done = done && all(sum[k] >= bound[k]);
+      if (k < count && all(sum[k] >= bound[k])) live &= ~(1 << k);
     }
-    if (done) break;
+    if (live == 0) break;
   }
 #pragma unroll
   for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
