@@ -30,11 +30,15 @@ void StereoParams::check() const {
   require(!std::isnan(gamma_distance) && gamma_distance > 0, "gamma-distance",
           "must be positive (inf: colour-only weights)");
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
-  require(iterations >= 1 && iterations <= 100, "iterations", "must be in 1..100");
-  require(iterations_coarsest >= 1 && iterations_coarsest <= 100, "iterations-coarsest",
-          "must be in 1..100");
-  require(iterations_fine >= 0 && iterations_fine <= 100, "iterations-fine",
-          "must be in 0..100");
+  // At most 50 + 10 iterations per level keep the random generator's iteration keys
+  // (iteration_key: 64 per level) distinct.
+  require(iterations >= 1 && iterations <= 50, "iterations", "must be in 1..50");
+  require(iterations_coarsest >= 1 && iterations_coarsest <= 50, "iterations-coarsest",
+          "must be in 1..50");
+  require(iterations_fine >= 0 && iterations_fine <= 50, "iterations-fine",
+          "must be in 0..50");
+  require(refill_iterations >= 0 && refill_iterations <= 10, "refill-iterations",
+          "must be in 0..10");
   require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
           "must be positive");
   require(std::isfinite(fine_search_range) && fine_search_range > 0, "fine-search-range",

@@ -46,6 +46,11 @@ std::string LevelPlan::iteration_label(int iteration) const {
   return name + ", iteration " + std::to_string(iteration) + "/" + std::to_string(iterations);
 }
 
+std::string LevelPlan::refill_label(int iteration) const {
+  return name + ", after the check-and-fill, iteration " + std::to_string(iteration) + "/" +
+         std::to_string(refill_iterations);
+}
+
 LevelPlan plan_level(const StereoParams& params, int level, int levels, int width, int height) {
   LevelPlan plan;
   plan.level = level;
@@ -79,6 +84,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.refresh_confidence = plan.use_confidence && params.refresh_confidence == 1;
   plan.compute_confidence = level > 0;
   plan.fill_before_carry = level > 0 && params.fill_coarse == 1;
+  plan.refill_iterations = level == 0 ? params.refill_iterations : 0;
   plan.name = "level " + std::to_string(level) + " (" + std::to_string(width) + "x" +
               std::to_string(height) + ")";
   return plan;

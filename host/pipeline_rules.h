@@ -43,6 +43,10 @@ struct LevelPlan {
   // After each iteration but the last, the confidence is recomputed from this level's
   // planes (StereoParams::refresh_confidence).
   bool refresh_confidence = false;
+  // Then (finest level only) both views' pixels that fail the left/right check take the
+  // background plane and this many more iterations run, steered by that check
+  // (StereoParams::refill_iterations).
+  int refill_iterations = 0;
   // The level computes the confidence that steers the next finer level.
   bool compute_confidence = false;
   // Then its inconsistent pixels take the background plane (fill_inconsistent) before
@@ -53,6 +57,8 @@ struct LevelPlan {
 
   // Progress line of an iteration: "level 2 (160x120), iteration 1/3".
   std::string iteration_label(int iteration) const;
+  // "level 0 (640x480), after the check-and-fill, iteration 1/1".
+  std::string refill_label(int iteration) const;
 };
 
 // `width` x `height`: the size of the level (for its name).

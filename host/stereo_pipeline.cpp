@@ -34,6 +34,34 @@ void confidence_from_planes(const PlaneField fields[2], int threads,
   }
 }
 
+// One PatchMatch iteration: each view, each checkerboard colour, the spatial and view
+// propagation and the random search; `confidence` (null: none) steers them.
+void run_iteration(const LevelInputs& in, const LevelPlan& plan, std::uint32_t key,
+                   const std::vector<float>* confidence, PlaneField fields[2]) {
+  for (int view = 0; view < 2; ++view) {
+    const std::vector<float>* trusted = confidence ? &confidence[view] : nullptr;
+    for (int colour = 0; colour < 2; ++colour) {
+      propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
+      propagate_view(in, view, colour, fields[1 - view], fields[view]);
+      refine_random(in, view, colour, key, plan.schedule, trusted, fields[view]);
+    }
+  }
+}
+
+// Both views' pixels whose disparities fail the left/right check take the background
+// plane of their row (fill_inconsistent).
+void fill_both_views(const std::vector<float> disparity[2], const StereoParams& params,
+                     int threads, PlaneField fields[2]) {
+  for (int view = 0; view < 2; ++view) {
+    const std::vector<std::uint8_t> consistent =
+        left_right_check(disparity[view], disparity[1 - view], fields[view].width,
+                         fields[view].height, view, params.lr_tolerance, threads);
+    fields[view].planes = fill_inconsistent(fields[view].planes, consistent, fields[view].width,
+                                            fields[view].height, params.fill_max_extrapolation,
+                                            threads);
+  }
+}
+
 }  // namespace
 
 double StereoResult::total_seconds() const {
@@ -90,17 +118,10 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       }
     }
 
+    const std::vector<float>* trusted = plan.use_confidence ? confidence : nullptr;
     for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
       report(plan.iteration_label(iteration));
-      for (int view = 0; view < 2; ++view) {
-        const std::vector<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
-        for (int colour = 0; colour < 2; ++colour) {
-          propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
-          propagate_view(in, view, colour, fields[1 - view], fields[view]);
-          refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
-                        trusted, fields[view]);
-        }
-      }
+      run_iteration(in, plan, iteration_key(level, iteration), trusted, fields);
       // The next iteration trusts what this one made consistent.
       if (plan.refresh_confidence && iteration < plan.iterations) {
         std::vector<float> disparity[2];
@@ -108,20 +129,25 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       }
     }
 
+    // The pixels that fail the check start again from the background plane, steered by
+    // the check (the confidence); their costs follow their new planes.
+    if (plan.refill_iterations > 0) {
+      std::vector<float> disparity[2];
+      confidence_from_planes(fields, threads, disparity, confidence);
+      fill_both_views(disparity, params, threads, fields);
+      for (int view = 0; view < 2; ++view) evaluate_costs(in, view, fields[view]);
+      for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
+        report(plan.refill_label(iteration));
+        run_iteration(in, plan, iteration_key(level, plan.iterations + iteration), trusted,
+                      fields);
+      }
+    }
+
     // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
       std::vector<float> disparity[2];
       confidence_from_planes(fields, threads, disparity, confidence);
-      if (plan.fill_before_carry) {
-        for (int view = 0; view < 2; ++view) {
-          const std::vector<std::uint8_t> consistent =
-              left_right_check(disparity[view], disparity[1 - view], width, height, view,
-                               params.lr_tolerance, threads);
-          fields[view].planes =
-              fill_inconsistent(fields[view].planes, consistent, width, height,
-                                params.fill_max_extrapolation, threads);
-        }
-      }
+      if (plan.fill_before_carry) fill_both_views(disparity, params, threads, fields);
     }
     result.timings.push_back({plan.name, seconds_since(start)});
   }

@@ -143,6 +143,8 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --refresh-confidence 2", "--refresh-confidence");
   expect_rejected(pair + " --speckle-size -1", "--speckle-size");
   expect_rejected(pair + " --raw-speckle-size -3", "--raw-speckle-size");
+  expect_rejected(pair + " --refill-iterations 11", "--refill-iterations");
+  expect_rejected(pair + " --iterations-fine 51", "--iterations-fine");
   expect_rejected(pair + " --speckle-range inf", "--speckle-range");
   expect_rejected(pair + " --ndisp twelve", "--ndisp");
 }

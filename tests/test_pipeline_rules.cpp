@@ -31,6 +31,20 @@ TEST(PlanLevel, EveryLevelButTheFinestIsCheckedAndFilledBeforeItsPlanesAreCarrie
   EXPECT_FALSE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
 }
 
+TEST(PlanLevel, OnlyTheFinestLevelIteratesAgainAfterItsCheckAndFill) {
+  StereoParams params;
+  params.refill_iterations = 2;
+  EXPECT_EQ(plan_level(params, 2, 3, 25, 20).refill_iterations, 0);
+  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).refill_iterations, 0);
+  const LevelPlan finest = plan_level(params, 0, 3, 100, 80);
+  EXPECT_EQ(finest.refill_iterations, 2);
+  EXPECT_EQ(finest.refill_label(1), "level 0 (100x80), after the check-and-fill, iteration 1/2");
+  params.method = StereoMethod::PMS;  // its only level is the finest
+  EXPECT_EQ(plan_level(params, 0, 1, 100, 80).refill_iterations, 2);
+  params.refill_iterations = 0;
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).refill_iterations, 0);
+}
+
 TEST(PlanLevel, EachMethodTakesItsOwnIterationCounts) {
   StereoParams params;
   params.iterations = 3;

@@ -49,10 +49,12 @@ SceneScores score_fixture(StereoMethod method) {
 // 4.33 % (this half-size crop has few islands that large); on the 15 scenes 11.44 ->
 // 11.32 %. Then raw segments under 20 px counted as failing the left/right check
 // (raw_speckle_size): PPMS here 3.86 -> 3.71 % (nonocc 1.66 -> 1.52), PMS 4.33 -> 4.40 %;
-// on the 15 scenes 11.32 -> 11.14 %.
-constexpr double kRecordedPpmsBad2All = 3.71;
-constexpr double kRecordedPpmsBad2Nonocc = 1.52;
-constexpr double kRecordedPmsBad2All = 4.40;
+// on the 15 scenes 11.32 -> 11.14 %. Then one more iteration of the finest level after
+// its check-and-fill (refill_iterations): PPMS here 3.71 -> 3.75 % (nonocc 1.52 -> 1.73),
+// PMS 4.40 -> 4.27 %; on the 15 scenes 11.14 -> 10.96 % (seed 2: 11.27 -> 11.03).
+constexpr double kRecordedPpmsBad2All = 3.75;
+constexpr double kRecordedPpmsBad2Nonocc = 1.73;
+constexpr double kRecordedPmsBad2All = 4.27;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
 }  // namespace

@@ -76,6 +76,38 @@ void confidence_from_planes(OpenClStages& stages, const DeviceField fields[2],
   }
 }
 
+// One PatchMatch iteration (stereo_pipeline.cpp's run_iteration); `confidence` (null:
+// none) steers it.
+void run_iteration(OpenClStages& stages, const DeviceLevel& in, const LevelPlan& plan,
+                   std::uint32_t key, const Buffer<float>* confidence, DeviceField fields[2]) {
+  for (int view = 0; view < 2; ++view) {
+    const Buffer<float>* trusted = confidence ? &confidence[view] : nullptr;
+    for (int colour = 0; colour < 2; ++colour) {
+      stages.propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
+      stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
+      stages.refine_random(in, view, colour, key, plan.schedule, trusted, fields[view]);
+    }
+  }
+}
+
+// Both views' pixels that fail the left/right check take the background plane
+// (stereo_pipeline.cpp's fill_both_views).
+void fill_both_views(OpenClStages& stages, const Buffer<float> disparity[2],
+                     const StereoParams& params, DeviceField fields[2]) {
+  const int width = fields[0].width;
+  const int height = fields[0].height;
+  const size_t pixels = fields[0].pixels();
+  Buffer<std::uint8_t> consistent(stages.context(), pixels, "consistent");
+  for (int view = 0; view < 2; ++view) {
+    stages.left_right_check(disparity[view], disparity[1 - view], width, height, view,
+                            params.lr_tolerance, consistent);
+    Buffer<float> filled(stages.context(), 4 * pixels, "filled planes");
+    stages.fill_inconsistent(fields[view].planes, consistent, width, height,
+                             params.fill_max_extrapolation, filled);
+    fields[view].planes = std::move(filled);
+  }
+}
+
 }  // namespace
 
 struct OpenClMatcher::State {
@@ -211,17 +243,10 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
       }
     }
 
+    const Buffer<float>* trusted = plan.use_confidence ? confidence : nullptr;
     for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
       report(plan.iteration_label(iteration));
-      for (int view = 0; view < 2; ++view) {
-        const Buffer<float>* trusted = plan.use_confidence ? &confidence[view] : nullptr;
-        for (int colour = 0; colour < 2; ++colour) {
-          stages.propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
-          stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
-          stages.refine_random(in, view, colour, iteration_key(level, iteration), plan.schedule,
-                               trusted, fields[view]);
-        }
-      }
+      run_iteration(stages, in, plan, iteration_key(level, iteration), trusted, fields);
       // The next iteration trusts what this one made consistent.
       if (plan.refresh_confidence && iteration < plan.iterations) {
         Buffer<float> disparity[2];
@@ -229,21 +254,25 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
       }
     }
 
+    // The pixels that fail the check start again from the background plane, steered by
+    // the check (the confidence); their costs follow their new planes.
+    if (plan.refill_iterations > 0) {
+      Buffer<float> disparity[2];
+      confidence_from_planes(stages, fields, disparity, confidence);
+      fill_both_views(stages, disparity, params, fields);
+      for (int view = 0; view < 2; ++view) stages.evaluate_costs(in, view, fields[view]);
+      for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
+        report(plan.refill_label(iteration));
+        run_iteration(stages, in, plan, iteration_key(level, plan.iterations + iteration),
+                      trusted, fields);
+      }
+    }
+
     // The confidence that steers the next level's spatial and random search.
     if (plan.compute_confidence) {
       Buffer<float> disparity[2];
       confidence_from_planes(stages, fields, disparity, confidence);
-      if (plan.fill_before_carry) {
-        Buffer<std::uint8_t> consistent(context, pixels, "consistent");
-        for (int view = 0; view < 2; ++view) {
-          stages.left_right_check(disparity[view], disparity[1 - view], width, height, view,
-                                  params.lr_tolerance, consistent);
-          Buffer<float> filled(context, 4 * pixels, "filled planes");
-          stages.fill_inconsistent(fields[view].planes, consistent, width, height,
-                                   params.fill_max_extrapolation, filled);
-          fields[view].planes = std::move(filled);
-        }
-      }
+      if (plan.fill_before_carry) fill_both_views(stages, disparity, params, fields);
     }
     context.finish();
     result.timings.push_back({plan.name, seconds_since(start)});

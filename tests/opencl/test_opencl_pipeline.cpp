@@ -28,6 +28,7 @@ struct PipelineCase {
   int speckle_size = 100;  // StereoParams' default
   float speckle_range = 1.0f;
   int raw_speckle_size = 20;  // StereoParams' default
+  int refill_iterations = 1;  // StereoParams' default
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -66,6 +67,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.speckle_size = c.speckle_size;
   params.speckle_range = c.speckle_range;
   params.raw_speckle_size = c.raw_speckle_size;
+  params.refill_iterations = c.refill_iterations;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -141,7 +143,13 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_raw_speckles_only", StereoMethod::PPMS, 11, 11, 32,
                                    1, 2.0f, 2.0f, 4, 1, 2, 0, 1.0f, 60},
                       PipelineCase{"ppms_w11_large_fine_speckles", StereoMethod::PPMS, 11, 11,
-                                   32, 1, 2.0f, 2.0f, 4, 1, 2, 400, 0.5f}),
+                                   32, 1, 2.0f, 2.0f, 4, 1, 2, 400, 0.5f},
+                      PipelineCase{"ppms_w11_no_refill", StereoMethod::PPMS, 11, 11, 32, 1,
+                                   2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 0},
+                      PipelineCase{"ppms_w11_two_refills_no_refresh", StereoMethod::PPMS, 11,
+                                   11, 32, 1, 2.0f, 2.0f, 4, 0, 2, 100, 1.0f, 20, 2},
+                      PipelineCase{"pms_w11_no_refill", StereoMethod::PMS, 11, 11, 32, 1, 2.0f,
+                                   2.0f, 4, 1, 2, 100, 1.0f, 20, 0}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
