@@ -21,7 +21,7 @@
       const __global float *other_match, const __global float *weights, int width,       \
       int height, PmsCostParams cost_params, int view
 
-/* Everything pms_cost_lanes needs besides the pixels and the planes. */
+/* Everything pms_cost_lanes_group needs besides the pixels and the planes. */
 typedef struct {
   const __global float* ref_color;
   const __global float* ref_grad;
