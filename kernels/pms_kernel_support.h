@@ -370,10 +370,10 @@ typedef struct {
  * census, support weights) do not depend on the plane, so they are loaded once per
  * window pixel and only the other view's samples are per batch. Each batch's sums run
  * in pms_plane_cost's order, so its costs keep their bits; a batch stops after every
- * one of its lanes has reached its bound, the pass when every batch has. Batches evaluated together are bounded by
- * the best costs from before any of them, not by what the earlier ones improved:
- * the caller offers them in order afterwards, and a cost that a tighter bound would
- * have cut off is >= that bound either way (pms_group_offer). */
+ * one of its lanes has reached its bound, the pass when every batch has. Batches
+ * evaluated together are bounded by the best costs from before any of them, not by what
+ * the earlier ones improved: the caller offers them in order afterwards, and a cost that
+ * a tighter bound would have cut off is >= that bound either way (pms_group_offer). */
 __attribute__((always_inline)) inline void pms_cost_lanes_group(
     const PmsCostInputs* in, const PmsLanes* lanes, int py, const PmsCandidateBatch* batches,
     const int count, pms_floatv* costs) {
@@ -562,30 +562,32 @@ inline void pms_offer_costs(const PmsCandidateBatch* batches, int count,
   }
 }
 
-inline void pms_batch_offer(PmsCandidateBatch* batch, const PmsCostInputs* in,
-                            const PmsLanes* lanes, int y, PmsBestPlane* best) {
-  if (!batch->any) return;
-  pms_floatv costs[1];
-  pms_cost_lanes_group(in, lanes, y, batch, 1, costs);
-  pms_offer_costs(batch, 1, costs, best);
-}
-
-/* PMS_SPATIAL_GROUP batches in one window pass (pms_cost_lanes_group), all bounded by
- * the best costs from before them (pms_batch_set), then offered in order. The same
+/* `count` batches (a constant at the call site, at most PMS_SPATIAL_GROUP) in one window
+ * pass (pms_cost_lanes_group), all bounded by the best costs from before them
+ * (pms_batch_set), then offered in order. The same
  * planes win as when each is costed after the previous one was offered: a batch whose
  * cost would win is below every bound it could have had, so its lanes sum the whole
  * window either way and get the same bits; one that would lose is >= the tighter bound
  * whether cut off at the looser one or not (costs are sums of terms >= 0), and
  * pms_best_offer rejects it either way. A plane equal to an earlier batch's winner is
  * costed again instead of skipped (pms_best_same_as), ties, and is rejected. */
-inline void pms_group_offer(PmsCandidateBatch* batches, const PmsCostInputs* in,
-                            const PmsLanes* lanes, int y, PmsBestPlane* best) {
+__attribute__((always_inline)) inline void pms_group_offer(PmsCandidateBatch* batches,
+                                                           const int count,
+                                                           const PmsCostInputs* in,
+                                                           const PmsLanes* lanes, int y,
+                                                           PmsBestPlane* best) {
   int any = 0;
-  for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) any |= batches[k].any;
+  for (int k = 0; k < count; ++k) any |= batches[k].any;
   if (!any) return;
   pms_floatv costs[PMS_SPATIAL_GROUP];
-  pms_cost_lanes_group(in, lanes, y, batches, PMS_SPATIAL_GROUP, costs);
-  pms_offer_costs(batches, PMS_SPATIAL_GROUP, costs, best);
+  pms_cost_lanes_group(in, lanes, y, batches, count, costs);
+  pms_offer_costs(batches, count, costs, best);
+}
+
+/* One batch: the kernels whose candidates depend on the outcome of the previous one. */
+inline void pms_batch_offer(PmsCandidateBatch* batch, const PmsCostInputs* in,
+                            const PmsLanes* lanes, int y, PmsBestPlane* best) {
+  pms_group_offer(batch, 1, in, lanes, y, best);
 }
 
 /* Writes back every active lane's plane (a no-op for lanes whose plane did not change). */

@@ -42,7 +42,7 @@ __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, int first_cand
         pms_batch_set(&batches[k], l, ok, neighbour, &best[l]);
       }
     }
-    pms_group_offer(batches, &in, &lanes, y, best);
+    pms_group_offer(batches, PMS_SPATIAL_GROUP, &in, &lanes, y, best);
   }
   pms_best_store_lanes(best, &lanes, y, width, planes, cost);
 }

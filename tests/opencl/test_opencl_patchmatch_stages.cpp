@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <utility>
 #include <memory>
 #include <stdexcept>
 #include <tuple>
@@ -202,15 +203,17 @@ INSTANTIATE_TEST_SUITE_P(Cases, PatchMatchStage, ::testing::ValuesIn(level_cases
 // reference's bytes, in the order of an iteration.
 class CostLanes : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
 
-OpenClStages& stages_with_lanes(int lanes) {
-  static std::map<int, std::unique_ptr<OpenClStages>> by_lanes;
-  std::unique_ptr<OpenClStages>& built = by_lanes[lanes];
-  if (!built) built = std::make_unique<OpenClStages>(context(), nullptr, lanes);
+// Stages built with these build options, once per test binary.
+OpenClStages& stages_built_with(int lanes, int spatial_group) {
+  static std::map<std::pair<int, int>, std::unique_ptr<OpenClStages>> built_with;
+  std::unique_ptr<OpenClStages>& built = built_with[{lanes, spatial_group}];
+  if (!built) built = std::make_unique<OpenClStages>(context(), nullptr, lanes, spatial_group);
   return *built;
 }
 
 TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
-  OpenClStages& lanes = stages_with_lanes(std::get<0>(GetParam()));
+  OpenClStages& lanes =
+      stages_built_with(std::get<0>(GetParam()), OpenClStages::kDefaultSpatialGroup);
   const LevelCase& c = std::get<1>(GetParam());
   LevelFixture f(c);
   for (int view = 0; view < 2; ++view) {
@@ -262,18 +265,9 @@ TEST(CostLanesOption, RejectsCountsTheKernelsDoNotHave) {
 // near candidates split at a point that falls inside a group (5) or between (8).
 class SpatialGroup : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
 
-OpenClStages& stages_with_spatial_group(int group) {
-  static std::map<int, std::unique_ptr<OpenClStages>> by_group;
-  std::unique_ptr<OpenClStages>& built = by_group[group];
-  if (!built) {
-    built = std::make_unique<OpenClStages>(context(), nullptr, OpenClStages::kDefaultCostLanes,
-                                           group);
-  }
-  return *built;
-}
-
 TEST_P(SpatialGroup, PropagateSpatialMatchesTheReference) {
-  OpenClStages& grouped = stages_with_spatial_group(std::get<0>(GetParam()));
+  OpenClStages& grouped =
+      stages_built_with(OpenClStages::kDefaultCostLanes, std::get<0>(GetParam()));
   const LevelCase& c = std::get<1>(GetParam());
   LevelFixture f(c);
   advance(f);
