@@ -427,7 +427,10 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
    * which are exactly pms_first_offset(.., -x) .. min(radius, width - 1 - x). */
   const int x_begin = pms_first_offset(radius, step, -radius);
   const float max_x = (float)(width - 1);
-  for (int dy = y_begin; dy <= y_end; dy += step) {
+  const int row_count = pms_window_row_count(radius, step);
+  for (int row_index = 0; row_index < row_count; ++row_index) {
+    const int dy = pms_window_row(row_index, step);
+    if (dy < y_begin || dy > y_end) continue;
     const int qy = py + dy;
 #pragma unroll
     for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {

@@ -271,6 +271,17 @@ PMS_INLINE int pms_first_offset(int radius, int step, int lowest) {
   return -((-low) / step) * step;
 }
 
+/* The window's rows in the order the costs sum them: the centre row, then outwards,
+ * above before below (0, -step, +step, -2 step, ...); row_index runs over
+ * 0 .. pms_window_row_count - 1 and rows outside [y_begin, y_end] are skipped. The rows
+ * near the centre carry most of the support weight, so a losing plane's partial sum
+ * reaches its bound after fewer rows than in top-to-bottom order. */
+PMS_INLINE int pms_window_row_count(int radius, int step) { return 2 * (radius / step) + 1; }
+PMS_INLINE int pms_window_row(int row_index, int step) {
+  int ring = (row_index + 1) >> 1;
+  return (row_index & 1) ? -ring * step : ring * step;
+}
+
 /* The window offsets of pixel (px, py) that lie inside the image, on the grid k*step:
  * dy in [y_begin, y_end], dx in [x_begin, x_end]. Every window sum uses these, so the
  * cost and its weight sum run over the same pixels. */
@@ -297,9 +308,9 @@ PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, i
  * candidate plane of p is summed over the same pixels. Matching positions outside the
  * other image are clamped to its border.
  *
- * The sum stops as soon as it reaches `bound` (every term is >= 0, so the final sum
- * could only be larger): the caller rejects any result >= its best cost anyway. Pass
- * a huge bound for the full cost.
+ * Rows are summed centre first (pms_window_row). The sum stops as soon as it reaches
+ * `bound` (every term is >= 0, so the final sum could only be larger): the caller
+ * rejects any result >= its best cost anyway. Pass a huge bound for the full cost.
  */
 PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
                                 const PMS_GLOBAL float* ref_grad,
@@ -313,7 +324,10 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
   pms_window_bounds(params, width, height, px, py, &y_begin, &y_end, &x_begin, &x_end);
   float max_x = (float)(width - 1);
   float sum = 0.0f;
-  for (int dy = y_begin; dy <= y_end; dy += params.step) {
+  int row_count = pms_window_row_count(params.radius, params.step);
+  for (int row_index = 0; row_index < row_count; ++row_index) {
+    int dy = pms_window_row(row_index, params.step);
+    if (dy < y_begin || dy > y_end) continue;
     int qy = py + dy;
     float row_term = b * (float)qy;
     const PMS_GLOBAL float* ref_row = ref_color + 4 * qy * width;
