@@ -123,7 +123,20 @@ inline void pms_best_store(const PmsBestPlane* best, __global float* planes, __g
 #ifndef PMS_LANES
 #define PMS_LANES 8
 #endif
-#if PMS_LANES == 4
+/* PMS_LANES 1 is for GPUs, which run work items side by side in hardware and so need
+ * many items more than wide ones: one pixel per item, plain scalars. Scalar comparisons
+ * give 1 where vector ones give -1, hence PMS_ANY / PMS_ALL (select() takes either). */
+#if PMS_LANES == 1
+typedef float pms_floatv;
+typedef int pms_intv;
+#define PMS_VLOAD(offset, p) ((p)[offset])
+#define PMS_TO_FLOATV(v) ((float)(v))
+#define PMS_TO_INTV(v) ((int)(v))
+#define PMS_TO_UINTV(v) ((uint)(v))
+#define PMS_LANE(v, l) (v)
+#define PMS_ANY(v) ((v) != 0)
+#define PMS_ALL(v) ((v) != 0)
+#elif PMS_LANES == 4
 typedef float4 pms_floatv;
 typedef int4 pms_intv;
 #define PMS_VLOAD vload4
@@ -145,7 +158,12 @@ typedef int16 pms_intv;
 #define PMS_TO_INTV convert_int16
 #define PMS_TO_UINTV convert_uint16
 #else
-#error "PMS_LANES must be 4, 8 or 16"
+#error "PMS_LANES must be 1, 4, 8 or 16"
+#endif
+#if PMS_LANES > 1
+#define PMS_LANE(v, l) ((v)[l])
+#define PMS_ANY(v) any(v)
+#define PMS_ALL(v) all(v)
 #endif
 
 /* Eight floats base[index.s0], ..., base[index.s7] (a gather). */
@@ -305,7 +323,9 @@ inline void pms_load_match_samples(const __global float* match_row, pms_intv x0,
                                    PmsMatchSamples* m) {
   float f[PMS_MATCH_RECORD][PMS_LANES];
   for (int l = 0; l < PMS_LANES; ++l) {
-    for (int k = 0; k < PMS_MATCH_RECORD; ++k) f[k][l] = match_row[PMS_MATCH_RECORD * x0[l] + k];
+    for (int k = 0; k < PMS_MATCH_RECORD; ++k) {
+      f[k][l] = match_row[PMS_MATCH_RECORD * PMS_LANE(x0, l) + k];
+    }
   }
   m->r = PMS_VLOAD(0, f[0]);
   m->g = PMS_VLOAD(0, f[1]);
@@ -325,7 +345,9 @@ inline void pms_load_match_samples(const __global float* match_row, pms_intv x0,
 /* popcount of every lane in vector operations: PoCL's CPU target (skylake-avx512 here)
  * has no vector popcount instruction and splits popcount() into one scalar popcnt per
  * lane. The classic bit-parallel count; integers, so exact. */
-#if PMS_LANES == 4
+#if PMS_LANES == 1
+typedef uint pms_uintv;
+#elif PMS_LANES == 4
 typedef uint4 pms_uintv;
 #elif PMS_LANES == 8
 typedef uint8 pms_uintv;
@@ -443,7 +465,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
     for (int dx = x_begin; dx <= radius; dx += step) {
       const pms_intv qx = px + dx;
       const pms_intv inside = (qx >= 0) & (qx < width);
-      if (!any(inside)) continue;
+      if (!PMS_ANY(inside)) continue;
       const int first_qx = lanes->first + dx;
       const int fast = strided && first_qx >= 0 && first_qx + 2 * (PMS_LANES - 1) <= width - 1;
       const pms_floatv fqx = PMS_TO_FLOATV(qx);
@@ -530,7 +552,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
     }
 #pragma unroll
     for (int k = 0; k < PMS_SPATIAL_GROUP; ++k) {
-      if (k < count && all(sum[k] >= bound[k])) live &= ~(1 << k);
+      if (k < count && PMS_ALL(sum[k] >= bound[k])) live &= ~(1 << k);
     }
     if (live == 0) break;
   }
@@ -560,7 +582,7 @@ inline void pms_offer_costs(const PmsCandidateBatch* batches, int count,
     for (int l = 0; l < PMS_LANES; ++l) {
       if (!batches[k].tries[l]) continue;
       float candidate[3] = {batches[k].a[l], batches[k].b[l], batches[k].c[l]};
-      pms_best_offer(&best[l], candidate, costs[k][l]);
+      pms_best_offer(&best[l], candidate, PMS_LANE(costs[k], l));
     }
   }
 }
@@ -621,7 +643,7 @@ inline void pms_batch_store_costs(PmsCandidateBatch* batch, const PmsCostInputs*
   pms_floatv costs[1];
   pms_cost_lanes_group(in, lanes, y, batch, 1, costs);
   for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes->active[l]) cost[y * width + lanes->x[l]] = costs[0][l];
+    if (lanes->active[l]) cost[y * width + lanes->x[l]] = PMS_LANE(costs[0], l);
   }
 }
 

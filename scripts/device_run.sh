@@ -2,9 +2,10 @@
 # Runs on the lent GPU machine, from the repository root, with .device/ carried there
 # (scripts/device_bundle.sh made it). Probes for NVIDIA's OpenCL driver, points the
 # OpenCL loader at it, then times the matcher on every scene through OpenCL and
-# compares its bytes with the reference path run on the same machine. Everything it
-# finds goes to $OUT: probe.txt, device_check.md and the disparities (disp.tar.gz, to
-# score here with `flexsight eval DATA --results DIR`).
+# compares its bytes with the reference path run on the same machine, then again with
+# one pixel per work item (FLEXSIGHT_CL_LANES=1). Everything it finds goes to $OUT:
+# probe.txt, device_check.md, device_check_lanes1.md and lanes1_cmp.txt, the profiles
+# and the disparities (disp.tar.gz, to score here with `flexsight eval DATA --results DIR`).
 # usage (through the device tool): scripts/device_run.sh [REPEAT [SCENE ...]]
 # (SCENEs: a subset of the bundle's, e.g. for a rehearsal on PoCL here)
 set -uo pipefail
@@ -48,11 +49,27 @@ cat "$out/probe.txt"
 .device/bin/flexsight_device_check "$scenes/manifest.txt" "$out/disp" --repeat "$repeat" \
   2>&1 | tee "$out/device_check.md"
 status=${PIPESTATUS[0]}
+# The same scenes with one pixel per work item (FLEXSIGHT_CL_LANES=1, the kernels' GPU
+# setting; the default 8 lanes suit CPU drivers), no reference run: its disparities must
+# be the default's bytes, which cmp checks.
+mkdir -p "$scenes/lanes1"
+FLEXSIGHT_CL_LANES=1 .device/bin/flexsight_device_check "$scenes/manifest.txt" "$scenes/lanes1" \
+  --repeat "$repeat" --reference 0 2>&1 | tee "$out/device_check_lanes1.md"
+compared=0
+for f in "$out"/disp/*.pfm; do
+  compared=$((compared + 1))
+  cmp -s "$f" "$scenes/lanes1/$(basename "$f")" || echo "lanes 1 differs: $(basename "$f")"
+done > "$out/lanes1_cmp.txt"
+echo "lanes 1 against 8: $compared disparities compared" >> "$out/lanes1_cmp.txt"
+cat "$out/lanes1_cmp.txt"
 # Where the time goes on this device: one profiled run of three scenes (device time per
 # kernel from OpenCL events; profiling adds its own overhead, so not the timings above).
 head -3 "$scenes/manifest.txt" > "$scenes/profile.txt"
 mkdir -p "$scenes/profile_out"
 .device/bin/flexsight_device_check "$scenes/profile.txt" "$scenes/profile_out" --repeat 1 \
   --reference 0 --profile 2>&1 | tee "$out/device_profile.md"
+FLEXSIGHT_CL_LANES=1 .device/bin/flexsight_device_check "$scenes/profile.txt" \
+  "$scenes/profile_out" --repeat 1 --reference 0 --profile 2>&1 |
+  tee "$out/device_profile_lanes1.md"
 tar -C "$out" -czf "$out/disp.tar.gz" disp && rm -rf "$out/disp"
 exit "$status"

@@ -30,8 +30,10 @@ std::string slurp(const fs::path& path) {
   return text.str();
 }
 
-RunResult run_flexsight(const std::string& arguments, const fs::path& dir) {
-  const std::string command = std::string(FLEXSIGHT_BINARY) + " " + arguments + " > " +
+// `environment`: "NAME=value " assignments put before the command (empty: none).
+RunResult run_flexsight(const std::string& arguments, const fs::path& dir,
+                        const std::string& environment = "") {
+  const std::string command = environment + std::string(FLEXSIGHT_BINARY) + " " + arguments + " > " +
                               (dir / "stdout.txt").string() + " 2> " + (dir / "stderr.txt").string();
   int status = std::system(command.c_str());
   RunResult result;
@@ -194,6 +196,34 @@ TEST_F(Cli, OpenClAndReferenceWriteTheSameBytes) {
   ASSERT_EQ(expected.size(), actual.size());
   ASSERT_TRUE(expected.isContinuous() && actual.isContinuous());
   EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
+}
+
+// One pixel per work item, the GPU setting (FLEXSIGHT_CL_LANES=1), gives the bytes of
+// the default 8 and of the reference.
+TEST_F(Cli, OneLanePerWorkItemWritesTheReferenceBytes) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  const std::string one_lane_pfm = (dir_ / "one_lane.pfm").string();
+  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  RunResult one_lane = run_flexsight(
+      pair + " -o " + one_lane_pfm + " --device opencl", dir_, "FLEXSIGHT_CL_LANES=1 ");
+  ASSERT_EQ(one_lane.exit_code, 0) << one_lane.err;
+  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
+  const cv::Mat actual = flexsight::read_pfm(one_lane_pfm);
+  ASSERT_EQ(expected.size(), actual.size());
+  ASSERT_TRUE(expected.isContinuous() && actual.isContinuous());
+  EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
+}
+
+TEST_F(Cli, RejectsALaneCountTheKernelsDoNotHave) {
+  RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ +
+                                  " --ndisp 16 --device opencl" + quick(),
+                              dir_, "FLEXSIGHT_CL_LANES=3 ");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("FLEXSIGHT_CL_LANES: must be 1, 4, 8 or 16, got '3'"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(output_));
 }
 
 TEST_F(Cli, WritesBothViewsRawDisparities) {

@@ -6,10 +6,13 @@
 #include "host/opencl/opencl_matcher.h"
 
 #include <chrono>
+#include <cstdlib>
+#include <string>
 #include <utility>
 
 #include "fallback/image_pyramid.h"
 #include "fallback/weight_table.h"
+#include "host/io/input_error.h"
 #include "host/opencl/opencl_stages.h"
 #include "host/pipeline_rules.h"
 
@@ -108,6 +111,20 @@ void fill_both_views(OpenClStages& stages, const Buffer<float> disparity[2],
   }
 }
 
+// Pixels per work item of the cost kernels: FLEXSIGHT_CL_LANES when set (1 for a GPU,
+// see OpenClStages::kDefaultCostLanes), else the default, which suits CPU drivers.
+int cost_lanes_from_environment() {
+  const char* text = std::getenv("FLEXSIGHT_CL_LANES");
+  if (text == nullptr || *text == '\0') return OpenClStages::kDefaultCostLanes;
+  char* end = nullptr;
+  const long lanes = std::strtol(text, &end, 10);
+  if (*end != '\0' || (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16)) {
+    throw InputError("environment variable FLEXSIGHT_CL_LANES",
+                     std::string("must be 1, 4, 8 or 16, got '") + text + "'");
+  }
+  return static_cast<int>(lanes);
+}
+
 }  // namespace
 
 struct OpenClMatcher::State {
@@ -115,7 +132,8 @@ struct OpenClMatcher::State {
   KernelProfiler profiler;
   OpenClStages stages;
   State(const DeviceInfo& device, bool profile)
-      : context(device), stages(context, profile ? &profiler : nullptr) {}
+      : context(device),
+        stages(context, profile ? &profiler : nullptr, cost_lanes_from_environment()) {}
 };
 
 bool opencl_available(std::string* why) {

@@ -18,8 +18,10 @@ class OpenClStages {
  public:
   // Pixels per work item of the cost kernels (PMS_LANES of pms_kernel_support.h): they
   // evaluate that many pixels' costs together in OpenCL vector types, which a CPU driver
-  // compiles to SIMD code where it could not vectorise across work items. 4, 8 or 16;
-  // the result is the same bytes whatever the count (tested).
+  // compiles to SIMD code where it could not vectorise across work items. 1, 4, 8 or 16;
+  // the result is the same bytes whatever the count (tested). 1 is for GPUs, which
+  // vectorise across work items in hardware and need as many of them as there are
+  // pixels (FLEXSIGHT_CL_LANES selects it without a rebuild).
   static constexpr int kDefaultCostLanes = 8;
   // Spatial candidates propagate_spatial costs in one pass over the window
   // (PMS_SPATIAL_GROUP): their own view's samples are loaded once for all of them. 1 to

@@ -198,9 +198,9 @@ TEST_P(PatchMatchStage, UpsampleNearest) {
 INSTANTIATE_TEST_SUITE_P(Cases, PatchMatchStage, ::testing::ValuesIn(level_cases()),
                          level_case_name);
 
-// PMS_LANES, the pixels per work item of the cost kernels, is a build option: with 4 or
-// 16 lanes (the tests above run the default, 8) every cost stage still gives the
-// reference's bytes, in the order of an iteration.
+// PMS_LANES, the pixels per work item of the cost kernels, is a build option: with 1
+// (scalars, for GPUs), 4 or 16 lanes (the tests above run the default, 8) every cost
+// stage still gives the reference's bytes, in the order of an iteration.
 class CostLanes : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
 
 // Stages built with these build options, once per test binary.
@@ -246,8 +246,8 @@ TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    FourAndSixteen, CostLanes,
-    ::testing::Combine(::testing::Values(4, 16), ::testing::ValuesIn(level_cases())),
+    OneFourAndSixteen, CostLanes,
+    ::testing::Combine(::testing::Values(1, 4, 16), ::testing::ValuesIn(level_cases())),
     [](const auto& info) {
       return std::to_string(std::get<0>(info.param)) + "lanes_" +
              case_name(std::get<1>(info.param));
