@@ -118,7 +118,8 @@ int cost_lanes_from_environment() {
   if (text == nullptr || *text == '\0') return OpenClStages::kDefaultCostLanes;
   char* end = nullptr;
   const long lanes = std::strtol(text, &end, 10);
-  if (*end != '\0' || (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16)) {
+  if (*end != '\0' || lanes < 1 || lanes > 16 ||
+      !OpenClStages::supports_cost_lanes(static_cast<int>(lanes))) {
     throw InputError("environment variable FLEXSIGHT_CL_LANES",
                      std::string("must be 1, 4, 8 or 16, got '") + text + "'");
   }

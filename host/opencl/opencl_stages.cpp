@@ -9,7 +9,7 @@ namespace {
 namespace src = kernel_sources;
 
 int checked_lanes(int lanes) {
-  if (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16) {
+  if (!OpenClStages::supports_cost_lanes(lanes)) {
     throw std::invalid_argument("cost lanes must be 1, 4, 8 or 16, got " +
                                 std::to_string(lanes));
   }

@@ -23,6 +23,9 @@ class OpenClStages {
   // vectorise across work items in hardware and need as many of them as there are
   // pixels (FLEXSIGHT_CL_LANES selects it without a rebuild).
   static constexpr int kDefaultCostLanes = 8;
+  static constexpr bool supports_cost_lanes(int lanes) {
+    return lanes == 1 || lanes == 4 || lanes == 8 || lanes == 16;
+  }
   // Spatial candidates propagate_spatial costs in one pass over the window
   // (PMS_SPATIAL_GROUP): their own view's samples are loaded once for all of them. 1 to
   // 8, same bytes whatever the count (tested). Motorcycle (MiddEval3 Q) on PoCL, 2 cores,
