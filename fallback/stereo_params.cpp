@@ -35,6 +35,11 @@ void StereoParams::check() const {
   require(iterations >= 1 && iterations <= 50, "iterations", "must be in 1..50");
   require(iterations_coarsest >= 1 && iterations_coarsest <= 50, "iterations-coarsest",
           "must be in 1..50");
+  require(window_step_finest >= 0 && window_step_finest <= window, "window-step-finest",
+          "must be in 0..window (0 = window-step-fine), got " +
+              std::to_string(window_step_finest));
+  require(iterations_finest >= 0 && iterations_finest <= 50, "iterations-finest",
+          "must be in 0..50 (0 = iterations-fine), got " + std::to_string(iterations_finest));
   require(iterations_fine >= 0 && iterations_fine <= 50, "iterations-fine",
           "must be in 0..50");
   require(refill_iterations >= 0 && refill_iterations <= 10, "refill-iterations",

@@ -29,6 +29,15 @@ struct StereoParams {
   // coarser window costs: with the old 8 candidates step 4 gave 12.23 % against 11.93
   // for step 3.
   int window_step_fine = 4;
+  // PPMS: the finest level's window step and iterations, where they differ from the
+  // levels above (0 = window_step_fine, iterations_fine). The finest level takes about
+  // three quarters of the time, so these are the knobs for speed. 15 MiddEval3 Q
+  // scenes, OpenCL, bad-2 all, seed 1, mean time per scene on a slow hour (defaults
+  // 10.92 % in 16.3 s): step 5 11.14 % in 11.4 s (0.70x), 1 iteration 11.16 % in 12.8 s
+  // (0.78x), both 11.20 % in 8.85 s (0.54x); for comparison --iterations-fine 1
+  // --refill-iterations 0 12.24 % in 7.1 s.
+  int window_step_finest = 0;
+  int iterations_finest = 0;
   // Weight of the gradient term against the colour term in the matching cost.
   float alpha = 0.9f;
   // Truncation of the colour (L1 over RGB) and gradient dissimilarities.

@@ -66,6 +66,11 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
     // need refining: a sparser window there costs no accuracy beyond the seed spread
     // and most of the time goes there (StereoParams::window_step_fine).
     if (!plan.coarsest) plan.cost.step = params.window_step_fine;
+    // The finest level may take its own (StereoParams::window_step_finest).
+    if (!plan.coarsest && level == 0) {
+      if (params.window_step_finest > 0) plan.cost.step = params.window_step_finest;
+      if (params.iterations_finest > 0) plan.iterations = params.iterations_finest;
+    }
   }
 
   // Half the level's disparity range at first; below the coarsest level the carried

@@ -105,6 +105,34 @@ TEST(PlanLevel, EveryLevelBelowTheCoarsestTakesTheFineWindowStep) {
   EXPECT_EQ(plan_level(params, 0, 1, 1000, 800).cost.step, 2);
 }
 
+TEST(PlanLevel, TheFinestLevelMayTakeItsOwnWindowStepAndIterations) {
+  StereoParams params;
+  params.window_step = 2;
+  params.window_step_fine = 3;
+  params.iterations_coarsest = 3;
+  params.iterations_fine = 2;
+  params.window_step_finest = 5;
+  params.iterations_finest = 1;
+  EXPECT_EQ(plan_level(params, 2, 3, 25, 20).cost.step, 2);
+  EXPECT_EQ(plan_level(params, 2, 3, 25, 20).iterations, 3);
+  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).cost.step, 3);
+  EXPECT_EQ(plan_level(params, 1, 3, 50, 40).iterations, 2);
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).cost.step, 5);
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).iterations, 1);
+  // A single level is the coarsest, and PMS has its own counts.
+  EXPECT_EQ(plan_level(params, 0, 1, 100, 80).cost.step, 2);
+  EXPECT_EQ(plan_level(params, 0, 1, 100, 80).iterations, 3);
+  params.method = StereoMethod::PMS;
+  EXPECT_EQ(plan_level(params, 0, 1, 1000, 800).cost.step, 2);
+  EXPECT_EQ(plan_level(params, 0, 1, 1000, 800).iterations, params.iterations);
+  // 0 leaves the finer levels' values.
+  params.method = StereoMethod::PPMS;
+  params.window_step_finest = 0;
+  params.iterations_finest = 0;
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).cost.step, 3);
+  EXPECT_EQ(plan_level(params, 0, 3, 100, 80).iterations, 2);
+}
+
 TEST(LevelNdisp, HalvesRoundingUpAndKeepsAtLeastTwo) {
   EXPECT_EQ(level_ndisp(65, 0), 65);
   EXPECT_EQ(level_ndisp(65, 1), 33);

@@ -29,6 +29,8 @@ struct PipelineCase {
   float speckle_range = 1.0f;
   int raw_speckle_size = 20;  // StereoParams' default
   int refill_iterations = 1;  // StereoParams' default
+  int window_step_finest = 0;  // StereoParams' default: the finer levels' values
+  int iterations_finest = 0;
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -68,6 +70,8 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.speckle_range = c.speckle_range;
   params.raw_speckle_size = c.raw_speckle_size;
   params.refill_iterations = c.refill_iterations;
+  params.window_step_finest = c.window_step_finest;
+  params.iterations_finest = c.iterations_finest;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -149,7 +153,9 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"ppms_w11_two_refills_no_refresh", StereoMethod::PPMS, 11,
                                    11, 32, 1, 2.0f, 2.0f, 4, 0, 2, 100, 1.0f, 20, 2},
                       PipelineCase{"pms_w11_no_refill", StereoMethod::PMS, 11, 11, 32, 1, 2.0f,
-                                   2.0f, 4, 1, 2, 100, 1.0f, 20, 0}),
+                                   2.0f, 4, 1, 2, 100, 1.0f, 20, 0},
+                      PipelineCase{"ppms_w11_finest_step_5_one_iteration", StereoMethod::PPMS,
+                                   11, 11, 32, 1, 2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 1, 5, 1}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
