@@ -4,7 +4,6 @@
 #include <sys/wait.h>
 
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -193,12 +192,8 @@ TEST_F(Cli, OpenClAndReferenceWriteTheSameBytes) {
   ASSERT_EQ(opencl.exit_code, 0) << opencl.err;
   EXPECT_NE(opencl.out.find("| stage (OpenCL path on #"), std::string::npos) << opencl.out;
 
-  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
-  const cv::Mat actual = flexsight::read_pfm(opencl_pfm);
-  ASSERT_EQ(expected.type(), actual.type());
-  ASSERT_EQ(expected.size(), actual.size());
-  ASSERT_TRUE(expected.isContinuous() && actual.isContinuous());
-  EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
+                                                    flexsight::read_pfm(opencl_pfm)));
 }
 
 // One pixel per work item, the GPU setting (FLEXSIGHT_CL_LANES=1), gives the bytes of
@@ -212,11 +207,8 @@ TEST_F(Cli, OneLanePerWorkItemWritesTheReferenceBytes) {
   RunResult one_lane = run_flexsight(
       pair + " -o " + one_lane_pfm + " --device opencl", dir_, "FLEXSIGHT_CL_LANES=1 ");
   ASSERT_EQ(one_lane.exit_code, 0) << one_lane.err;
-  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
-  const cv::Mat actual = flexsight::read_pfm(one_lane_pfm);
-  ASSERT_EQ(expected.size(), actual.size());
-  ASSERT_TRUE(expected.isContinuous() && actual.isContinuous());
-  EXPECT_EQ(std::memcmp(expected.data, actual.data, expected.total() * expected.elemSize()), 0);
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
+                                                    flexsight::read_pfm(one_lane_pfm)));
 }
 
 TEST_F(Cli, RejectsALaneCountTheKernelsDoNotHave) {
