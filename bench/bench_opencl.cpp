@@ -170,7 +170,8 @@ void propagate_view(benchmark::State& state) {
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
         for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, other, field);
+          s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr, other,
+                           field);
         }
       });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));

@@ -101,8 +101,8 @@ void propagate_view(benchmark::State& state) {
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
         for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, f.fields[PMS_VIEW_RIGHT],
-                                    field);
+          flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr,
+                                    f.fields[PMS_VIEW_RIGHT], field);
         }
       });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));

@@ -34,6 +34,12 @@ void for_each_pixel(int width, int height, int colour, int threads, const Update
   }
 }
 
+// Whether the pixel at `index` is confident under `schedule` (never without a confidence).
+bool is_confident(const SearchSchedule& schedule, const std::vector<float>* confidence,
+                  int index) {
+  return confidence && pms_is_confident((*confidence)[index], schedule.confident_threshold);
+}
+
 // The best plane found so far for one pixel while a stage tries candidates.
 struct BestPlane {
   float abc[3];
@@ -94,8 +100,8 @@ void propagate_spatial(const LevelInputs& in, int view, int colour,
                        PlaneField& field) {
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
-    bool confident =
-        confidence && pms_is_confident((*confidence)[index], schedule.confident_threshold);
+    bool confident = is_confident(schedule, confidence, index);
+    if (confident && schedule.unsure_only) return;
     BestPlane best(field, index);
     for (int candidate = 0; candidate < PMS_SPATIAL_CANDIDATES; ++candidate) {
       if (!pms_spatial_candidate_tried(candidate, confident,
@@ -116,11 +122,13 @@ void propagate_spatial(const LevelInputs& in, int view, int colour,
   });
 }
 
-void propagate_view(const LevelInputs& in, int view, int colour, const PlaneField& other,
+void propagate_view(const LevelInputs& in, int view, int colour, const SearchSchedule& schedule,
+                    const std::vector<float>* confidence, const PlaneField& other,
                     PlaneField& field) {
   const float direction = view_direction(view);
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
+    if (schedule.unsure_only && is_confident(schedule, confidence, index)) return;
     BestPlane best(field, index);
     float d = pms_plane_disparity(best.abc[0], best.abc[1], best.abc[2], static_cast<float>(x),
                                   static_cast<float>(y));
@@ -146,8 +154,8 @@ void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t it
       pms_search_wide_trial_count(schedule.initial_range, trials, schedule.confident_max_range);
   for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
-    bool confident =
-        confidence && pms_is_confident((*confidence)[index], schedule.confident_threshold);
+    bool confident = is_confident(schedule, confidence, index);
+    if (confident && schedule.unsure_only) return;
     BestPlane best(field, index);
     float range = schedule.initial_range;
     float normal_range = schedule.normal_range;

@@ -42,6 +42,9 @@ struct SearchSchedule {
   float confident_max_range = 0;  // confident pixels skip trials with a larger range
   // confident pixels try only this many spatial candidates (pms_spatial_candidate_tried)
   int confident_spatial_candidates = PMS_SPATIAL_CANDIDATES;
+  // Confident pixels sit the stage out and keep their planes; only the unsure ones
+  // search (the finest level's refill iteration, StereoParams::refill_unsure_only).
+  bool unsure_only = false;
 };
 
 // Random planes for every pixel of `view`, then their costs.
@@ -59,7 +62,9 @@ void propagate_spatial(const LevelInputs& in, int view, int colour,
                        PlaneField& field);
 
 // Pixels of `colour` try the plane of the pixel they match in the other view.
-void propagate_view(const LevelInputs& in, int view, int colour, const PlaneField& other,
+// `confidence` (may be null) matters only with schedule.unsure_only.
+void propagate_view(const LevelInputs& in, int view, int colour, const SearchSchedule& schedule,
+                    const std::vector<float>* confidence, const PlaneField& other,
                     PlaneField& field);
 
 // Pixels of `colour` try random perturbations of their plane with halving ranges.

@@ -44,6 +44,8 @@ void StereoParams::check() const {
           "must be in 0..50");
   require(refill_iterations >= 0 && refill_iterations <= 10, "refill-iterations",
           "must be in 0..10");
+  require(refill_unsure_only == 0 || refill_unsure_only == 1, "refill-unsure-only",
+          "must be 0 or 1");
   require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
           "must be positive");
   require(std::isfinite(fine_search_range) && fine_search_range > 0, "fine-search-range",

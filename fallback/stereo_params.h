@@ -116,6 +116,15 @@ struct StereoParams {
   // them 6.65 on Motorcycle; the extra iteration without the fill 6.69; 2 iterations
   // 11.23 % (6.65).
   int refill_iterations = 1;
+  // Only the pixels that fail that check (confidence below confident_threshold) search in
+  // those iterations; the others keep their planes (1 = on; 0: every pixel, steered by
+  // the check). The failed pixels are what the iteration is for; the consistent ones,
+  // about 83 % of Motorcycle's, were mostly polishing their planes there, a sub-pixel
+  // gain bad-2 does not see. 15 MiddEval3 Q scenes, OpenCL, bad-2 all / nonocc, seconds
+  // per scene (PoCL, 2 cores): seed 1 every pixel 10.92 / 7.11 %, unsure only 10.95 /
+  // 7.12 %; seed 2 11.05 / 7.28 % in 8.56 s, unsure only 11.10 / 7.26 % in 7.36 s
+  // (0.86x); Motorcycle 6.52 -> 6.48 % (seed 2: 6.61 -> 6.54).
+  int refill_unsure_only = 1;
   // Largest normal perturbation per component at the first trial (then halved).
   float max_normal_delta = 1.0f;
   // PPMS: the coarsest level is the first whose width is at most this.

@@ -47,6 +47,12 @@ struct LevelPlan {
   // background plane and this many more iterations run, steered by that check
   // (StereoParams::refill_iterations).
   int refill_iterations = 0;
+  // The search settings of those iterations: the level's, but with
+  // StereoParams::refill_unsure_only the confident pixels sit them out.
+  SearchSchedule refill_schedule;
+  // Those iterations are steered by the check's confidence (PPMS's finer levels, or any
+  // level whose refill is for the unsure pixels only).
+  bool refill_use_confidence = false;
   // The level computes the confidence that steers the next finer level.
   bool compute_confidence = false;
   // Then its inconsistent pixels take the background plane (fill_inconsistent) before

@@ -36,14 +36,14 @@ void confidence_from_planes(const PlaneField fields[2], int threads,
 
 // One PatchMatch iteration: each view, each checkerboard colour, the spatial and view
 // propagation and the random search; `confidence` (null: none) steers them.
-void run_iteration(const LevelInputs& in, const LevelPlan& plan, std::uint32_t key,
+void run_iteration(const LevelInputs& in, const SearchSchedule& schedule, std::uint32_t key,
                    const std::vector<float>* confidence, PlaneField fields[2]) {
   for (int view = 0; view < 2; ++view) {
     const std::vector<float>* trusted = confidence ? &confidence[view] : nullptr;
     for (int colour = 0; colour < 2; ++colour) {
-      propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
-      propagate_view(in, view, colour, fields[1 - view], fields[view]);
-      refine_random(in, view, colour, key, plan.schedule, trusted, fields[view]);
+      propagate_spatial(in, view, colour, schedule, trusted, fields[view]);
+      propagate_view(in, view, colour, schedule, trusted, fields[1 - view], fields[view]);
+      refine_random(in, view, colour, key, schedule, trusted, fields[view]);
     }
   }
 }
@@ -121,7 +121,7 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
     const std::vector<float>* trusted = plan.use_confidence ? confidence : nullptr;
     for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
       report(plan.iteration_label(iteration));
-      run_iteration(in, plan, iteration_key(level, iteration), trusted, fields);
+      run_iteration(in, plan.schedule, iteration_key(level, iteration), trusted, fields);
       // The next iteration trusts what this one made consistent.
       if (plan.refresh_confidence && iteration < plan.iterations) {
         std::vector<float> disparity[2];
@@ -136,10 +136,12 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       confidence_from_planes(fields, threads, disparity, confidence);
       fill_both_views(disparity, params, threads, fields);
       for (int view = 0; view < 2; ++view) evaluate_costs(in, view, fields[view]);
+      const std::vector<float>* refill_trusted =
+          plan.refill_use_confidence ? confidence : nullptr;
       for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
         report(plan.refill_label(iteration));
-        run_iteration(in, plan, iteration_key(level, plan.iterations + iteration), trusted,
-                      fields);
+        run_iteration(in, plan.refill_schedule, iteration_key(level, plan.iterations + iteration),
+                      refill_trusted, fields);
       }
     }
 

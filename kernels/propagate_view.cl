@@ -1,14 +1,19 @@
 /* Pixels of one checkerboard colour try the plane of the pixel they match in the other
  * view, re-expressed in this view (reference: propagate_view). Each work item handles
- * PMS_LANES pixels of a row (pms_checker_lanes) and evaluates them together. */
+ * PMS_LANES pixels of a row and evaluates them together: the whole colour when `list` is
+ * NULL, otherwise the listed (unsure) pixels of list_unsure_pixels, the reference's
+ * schedule.unsure_only. */
 #include "pms_kernel_support.h"
 
 __kernel void propagate_view(PMS_COST_KERNEL_ARGS, int colour,
-                             const __global float* other_planes, __global float* planes,
-                             __global float* cost) {
+                             const __global float* other_planes, const __global int* list,
+                             const __global int* list_counts, int list_stride,
+                             __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_checker_lanes(width, height, colour, &lanes, &y)) return;
+  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+    return;
+  }
   PmsCostInputs in = PMS_COST_INPUTS();
   PmsBestPlane best[PMS_LANES];
   PmsCandidateBatch batch;

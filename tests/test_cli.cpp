@@ -145,6 +145,7 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --speckle-size -1", "--speckle-size");
   expect_rejected(pair + " --raw-speckle-size -3", "--raw-speckle-size");
   expect_rejected(pair + " --refill-iterations 11", "--refill-iterations");
+  expect_rejected(pair + " --refill-unsure-only 2", "--refill-unsure-only");
   expect_rejected(pair + " --iterations-fine 51", "--iterations-fine");
   expect_rejected(pair + " --iterations-finest -1", "--iterations-finest");
   expect_rejected(pair + " --window-step-finest -1", "--window-step-finest");

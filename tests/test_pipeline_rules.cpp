@@ -45,6 +45,29 @@ TEST(PlanLevel, OnlyTheFinestLevelIteratesAgainAfterItsCheckAndFill) {
   EXPECT_EQ(plan_level(params, 0, 3, 100, 80).refill_iterations, 0);
 }
 
+// The refill iterations search the pixels that failed the check only, so they need the
+// check's confidence even where the level's own iterations run without one (PMS, or
+// PPMS's coarsest level were it ever the finest).
+TEST(PlanLevel, TheRefillSearchesTheUnsurePixelsOnlyByDefault) {
+  StereoParams params;
+  const LevelPlan ppms = plan_level(params, 0, 3, 100, 80);
+  EXPECT_FALSE(ppms.schedule.unsure_only);
+  EXPECT_TRUE(ppms.refill_schedule.unsure_only);
+  EXPECT_TRUE(ppms.refill_use_confidence);
+  EXPECT_EQ(ppms.refill_schedule.confident_threshold, ppms.schedule.confident_threshold);
+  EXPECT_EQ(ppms.refill_schedule.initial_range, ppms.schedule.initial_range);
+  params.method = StereoMethod::PMS;
+  const LevelPlan pms = plan_level(params, 0, 1, 100, 80);
+  EXPECT_FALSE(pms.use_confidence);
+  EXPECT_TRUE(pms.refill_use_confidence);
+  params.refill_unsure_only = 0;  // every pixel, steered as the level's own iterations
+  const LevelPlan pms_all = plan_level(params, 0, 1, 100, 80);
+  EXPECT_FALSE(pms_all.refill_schedule.unsure_only);
+  EXPECT_FALSE(pms_all.refill_use_confidence);
+  params.method = StereoMethod::PPMS;
+  EXPECT_TRUE(plan_level(params, 0, 3, 100, 80).refill_use_confidence);
+}
+
 TEST(PlanLevel, EachMethodTakesItsOwnIterationCounts) {
   StereoParams params;
   params.iterations = 3;

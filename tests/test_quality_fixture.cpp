@@ -53,9 +53,12 @@ SceneScores score_fixture(StereoMethod method) {
 // its check-and-fill (refill_iterations): PPMS here 3.71 -> 3.75 % (nonocc 1.52 -> 1.73),
 // PMS 4.40 -> 4.27 %; on the 15 scenes 11.14 -> 10.96 % (seed 2: 11.27 -> 11.03).
 // 2026-12-02: window rows summed centre first (rounding only): PPMS here 3.75 -> 3.77 %
-// (nonocc 1.73 -> 1.74), PMS 4.27 unchanged; on the 15 scenes 10.96 -> 10.92 %.
-constexpr double kRecordedPpmsBad2All = 3.77;
-constexpr double kRecordedPpmsBad2Nonocc = 1.74;
+// (nonocc 1.73 -> 1.74), PMS 4.27 unchanged; on the 15 scenes 10.96 -> 10.92 %. Later:
+// only the pixels that fail the check search in that extra iteration
+// (refill_unsure_only): PPMS here 3.77 -> 3.78 % (nonocc 1.74 -> 1.60), PMS 4.27 (other
+// bytes); on the 15 scenes 10.92 -> 10.95 % in 0.86x the time.
+constexpr double kRecordedPpmsBad2All = 3.78;
+constexpr double kRecordedPpmsBad2Nonocc = 1.60;
 constexpr double kRecordedPmsBad2All = 4.27;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 

@@ -81,14 +81,15 @@ void confidence_from_planes(OpenClStages& stages, const DeviceField fields[2],
 
 // One PatchMatch iteration (stereo_pipeline.cpp's run_iteration); `confidence` (null:
 // none) steers it.
-void run_iteration(OpenClStages& stages, const DeviceLevel& in, const LevelPlan& plan,
+void run_iteration(OpenClStages& stages, const DeviceLevel& in, const SearchSchedule& schedule,
                    std::uint32_t key, const Buffer<float>* confidence, DeviceField fields[2]) {
   for (int view = 0; view < 2; ++view) {
     const Buffer<float>* trusted = confidence ? &confidence[view] : nullptr;
     for (int colour = 0; colour < 2; ++colour) {
-      stages.propagate_spatial(in, view, colour, plan.schedule, trusted, fields[view]);
-      stages.propagate_view(in, view, colour, fields[1 - view], fields[view]);
-      stages.refine_random(in, view, colour, key, plan.schedule, trusted, fields[view]);
+      stages.propagate_spatial(in, view, colour, schedule, trusted, fields[view]);
+      stages.propagate_view(in, view, colour, schedule, trusted, fields[1 - view],
+                            fields[view]);
+      stages.refine_random(in, view, colour, key, schedule, trusted, fields[view]);
     }
   }
 }
@@ -265,7 +266,8 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
     const Buffer<float>* trusted = plan.use_confidence ? confidence : nullptr;
     for (int iteration = 1; iteration <= plan.iterations; ++iteration) {
       report(plan.iteration_label(iteration));
-      run_iteration(stages, in, plan, iteration_key(level, iteration), trusted, fields);
+      run_iteration(stages, in, plan.schedule, iteration_key(level, iteration), trusted,
+                    fields);
       // The next iteration trusts what this one made consistent.
       if (plan.refresh_confidence && iteration < plan.iterations) {
         Buffer<float> disparity[2];
@@ -280,10 +282,11 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
       confidence_from_planes(stages, fields, disparity, confidence);
       fill_both_views(stages, disparity, params, fields);
       for (int view = 0; view < 2; ++view) stages.evaluate_costs(in, view, fields[view]);
+      const Buffer<float>* refill_trusted = plan.refill_use_confidence ? confidence : nullptr;
       for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
         report(plan.refill_label(iteration));
-        run_iteration(stages, in, plan, iteration_key(level, plan.iterations + iteration),
-                      trusted, fields);
+        run_iteration(stages, in, plan.refill_schedule,
+                      iteration_key(level, plan.iterations + iteration), refill_trusted, fields);
       }
     }
 

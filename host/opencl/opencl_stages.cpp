@@ -182,16 +182,18 @@ int OpenClStages::list_unsure_pixels(const Buffer<float>& confidence, int width,
 // The reference's per-pixel rule (pms_spatial_candidate_tried) as two launches with the
 // same order per pixel: every pixel of the colour tries the near candidates, then the
 // unsure ones the rest. Launching the far candidates over a list keeps confident lanes
-// from riding along idle beside an unsure one.
+// from riding along idle beside an unsure one. With schedule.unsure_only the confident
+// pixels try none: one launch of every candidate over the list.
 void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,
                                      const SearchSchedule& schedule,
                                      const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "propagate_spatial");
   if (confidence) require_size(*confidence, field.pixels(), "propagate_spatial");
   const Buffer<int>* every_pixel = nullptr;
-  const int near = confidence ? std::clamp(schedule.confident_spatial_candidates, 0,
-                                           PMS_SPATIAL_CANDIDATES)
-                              : PMS_SPATIAL_CANDIDATES;
+  const int near = !confidence           ? PMS_SPATIAL_CANDIDATES
+                   : schedule.unsure_only ? 0
+                                          : std::clamp(schedule.confident_spatial_candidates, 0,
+                                                       PMS_SPATIAL_CANDIDATES);
   if (near > 0) {
     set_cost_args(propagate_spatial_, in, view, colour, 0, near, every_pixel, every_pixel, 0,
                   field.planes, field.cost);
@@ -208,17 +210,34 @@ void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour
   }
 }
 
+// Every pixel of the colour, or with schedule.unsure_only the unsure ones of the list.
 void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
-                                  const DeviceField& other, DeviceField& field) {
+                                  const SearchSchedule& schedule,
+                                  const Buffer<float>* confidence, const DeviceField& other,
+                                  DeviceField& field) {
   require_level(in, field, "propagate_view");
   require_field(other, "propagate_view");
-  set_cost_args(propagate_view_, in, view, colour, other.planes, field.planes, field.cost);
+  if (confidence) require_size(*confidence, field.pixels(), "propagate_view");
+  if (confidence && schedule.unsure_only) {
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+                                          schedule.confident_threshold);
+    const Buffer<int>* unsure = &unsure_list_;
+    const Buffer<int>* counts = &unsure_counts_;
+    set_cost_args(propagate_view_, in, view, colour, other.planes, unsure, counts, stride,
+                  field.planes, field.cost);
+  } else {
+    const Buffer<int>* every_pixel = nullptr;
+    set_cost_args(propagate_view_, in, view, colour, other.planes, every_pixel, every_pixel, 0,
+                  field.planes, field.cost);
+  }
   launch_checkerboard(propagate_view_, field.width, field.height);
 }
 
 // The reference's per-pixel rule (confident pixels skip the trials wider than
 // confident_max_range, which come first) as two launches with the same order per pixel:
-// the unsure pixels of the colour try the wide trials, then every pixel the rest.
+// the unsure pixels of the colour try the wide trials, then every pixel the rest. With
+// schedule.unsure_only every trial is "wide": the unsure pixels try them all, the
+// confident ones none.
 void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
                                  std::uint32_t iteration, const SearchSchedule& schedule,
                                  const Buffer<float>* confidence, DeviceField& field) {
@@ -226,9 +245,11 @@ void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
   if (confidence) require_size(*confidence, field.pixels(), "refine_random");
   const Buffer<int>* every_pixel = nullptr;
   const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);
-  const int wide = confidence ? pms_search_wide_trial_count(schedule.initial_range, trials,
-                                                            schedule.confident_max_range)
-                              : 0;
+  const int wide = !confidence           ? 0
+                   : schedule.unsure_only ? trials
+                                          : pms_search_wide_trial_count(
+                                                schedule.initial_range, trials,
+                                                schedule.confident_max_range);
   if (wide > 0) {
     const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
                                           schedule.confident_threshold);

@@ -55,8 +55,9 @@ class OpenClStages {
   void propagate_spatial(const DeviceLevel& in, int view, int colour,
                          const SearchSchedule& schedule, const Buffer<float>* confidence,
                          DeviceField& field);
-  void propagate_view(const DeviceLevel& in, int view, int colour, const DeviceField& other,
-                      DeviceField& field);
+  void propagate_view(const DeviceLevel& in, int view, int colour,
+                      const SearchSchedule& schedule, const Buffer<float>* confidence,
+                      const DeviceField& other, DeviceField& field);
   void refine_random(const DeviceLevel& in, int view, int colour, std::uint32_t iteration,
                      const SearchSchedule& schedule, const Buffer<float>* confidence,
                      DeviceField& field);

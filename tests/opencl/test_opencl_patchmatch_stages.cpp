@@ -3,6 +3,7 @@
 // byte, with a guard region after every output.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <map>
 #include <utility>
 #include <memory>
@@ -94,11 +95,49 @@ TEST_P(PatchMatchStage, PropagateView) {
       DeviceField field = upload(f.fields[view], "field");
       const DeviceField other = upload(f.fields[1 - view], "other field");
       const PlaneField before = f.fields[view];
-      propagate_view(f.in, view, colour, f.fields[1 - view], f.fields[view]);
+      propagate_view(f.in, view, colour, SearchSchedule{}, nullptr, f.fields[1 - view],
+                     f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().propagate_view(f.device_in, view, colour, other, field);
+      stages().propagate_view(f.device_in, view, colour, SearchSchedule{}, nullptr, other,
+                              field);
       expect_same_field(f.fields[view], field);
       EXPECT_TRUE(same_buffer(f.fields[1 - view].planes, other.planes)) << "input changed";
+    }
+  }
+}
+
+// The finest level's refill iteration: confident pixels keep their planes in every
+// stage, the unsure ones search as usual.
+TEST_P(PatchMatchStage, UnsurePixelsOnly) {
+  LevelFixture f(GetParam());
+  advance(f);
+  SearchSchedule schedule = search_schedule(f.in.ndisp);
+  schedule.unsure_only = true;
+  const std::vector<float> confidence =
+      random_confidence(f.fields[0].pixels(), GetParam().seed);
+  const Buffer<float> device_confidence = guarded(confidence, "confidence");
+  for (int view = 0; view < 2; ++view) {
+    for (int colour = 0; colour < 2; ++colour) {
+      DeviceField field = upload(f.fields[view], "field");
+      const DeviceField other = upload(f.fields[1 - view], "other field");
+      const PlaneField before = f.fields[view];
+      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
+      propagate_view(f.in, view, colour, schedule, &confidence, f.fields[1 - view],
+                     f.fields[view]);
+      refine_random(f.in, view, colour, 9, schedule, &confidence, f.fields[view]);
+      expect_some_change(before, f.fields[view]);
+      for (size_t i = 0; i < confidence.size(); ++i) {
+        if (!pms_is_confident(confidence[i], schedule.confident_threshold)) continue;
+        ASSERT_EQ(0, std::memcmp(&before.planes[4 * i], &f.fields[view].planes[4 * i],
+                                 4 * sizeof(float)))
+            << "confident pixel " << i << " changed its plane";
+      }
+      stages().propagate_spatial(f.device_in, view, colour, schedule, &device_confidence,
+                                 field);
+      stages().propagate_view(f.device_in, view, colour, schedule, &device_confidence, other,
+                              field);
+      stages().refine_random(f.device_in, view, colour, 9, schedule, &device_confidence, field);
+      expect_same_field(f.fields[view], field);
     }
   }
 }
@@ -235,11 +274,30 @@ TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
       lanes.propagate_spatial(f.device_in, view, colour, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
       const DeviceField other = upload(f.fields[1 - view], "other field");
-      propagate_view(f.in, view, colour, f.fields[1 - view], f.fields[view]);
-      lanes.propagate_view(f.device_in, view, colour, other, field);
+      propagate_view(f.in, view, colour, SearchSchedule{}, nullptr, f.fields[1 - view],
+                     f.fields[view]);
+      lanes.propagate_view(f.device_in, view, colour, SearchSchedule{}, nullptr, other,
+                           field);
       expect_same_field(f.fields[view], field);
       refine_random(f.in, view, colour, 9, schedule, &confidence, f.fields[view]);
       lanes.refine_random(f.device_in, view, colour, 9, schedule, &device_confidence, field);
+      expect_same_field(f.fields[view], field);
+    }
+    // The refill iteration's listed launches: the unsure pixels only.
+    SearchSchedule unsure_only = schedule;
+    unsure_only.unsure_only = true;
+    for (int colour = 0; colour < 2; ++colour) {
+      propagate_spatial(f.in, view, colour, unsure_only, &confidence, f.fields[view]);
+      lanes.propagate_spatial(f.device_in, view, colour, unsure_only, &device_confidence,
+                              field);
+      const DeviceField other = upload(f.fields[1 - view], "other field");
+      propagate_view(f.in, view, colour, unsure_only, &confidence, f.fields[1 - view],
+                     f.fields[view]);
+      lanes.propagate_view(f.device_in, view, colour, unsure_only, &device_confidence, other,
+                           field);
+      refine_random(f.in, view, colour, 10, unsure_only, &confidence, f.fields[view]);
+      lanes.refine_random(f.device_in, view, colour, 10, unsure_only, &device_confidence,
+                          field);
       expect_same_field(f.fields[view], field);
     }
   }

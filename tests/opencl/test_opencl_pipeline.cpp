@@ -31,6 +31,7 @@ struct PipelineCase {
   int refill_iterations = 1;  // StereoParams' default
   int window_step_finest = 0;  // StereoParams' default: the finer levels' values
   int iterations_finest = 0;
+  int refill_unsure_only = 1;  // StereoParams' default
 };
 
 void PrintTo(const PipelineCase& c, std::ostream* out) { *out << c.name; }
@@ -72,6 +73,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   params.refill_iterations = c.refill_iterations;
   params.window_step_finest = c.window_step_finest;
   params.iterations_finest = c.iterations_finest;
+  params.refill_unsure_only = c.refill_unsure_only;
   params.coarsest_width = 40;
 
   OpenClMatcher& opencl = matcher();  // built first: program builds are not timed
@@ -155,7 +157,11 @@ INSTANTIATE_TEST_SUITE_P(
                       PipelineCase{"pms_w11_no_refill", StereoMethod::PMS, 11, 11, 32, 1, 2.0f,
                                    2.0f, 4, 1, 2, 100, 1.0f, 20, 0},
                       PipelineCase{"ppms_w11_finest_step_5_one_iteration", StereoMethod::PPMS,
-                                   11, 11, 32, 1, 2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 1, 5, 1}),
+                                   11, 11, 32, 1, 2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 1, 5, 1},
+                      PipelineCase{"ppms_w11_refill_every_pixel", StereoMethod::PPMS, 11, 11, 32,
+                                   1, 2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 1, 0, 0, 0},
+                      PipelineCase{"pms_w11_refill_every_pixel", StereoMethod::PMS, 11, 11, 32, 1,
+                                   2.0f, 2.0f, 4, 1, 2, 100, 1.0f, 20, 1, 0, 0, 0}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
