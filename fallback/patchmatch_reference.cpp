@@ -87,9 +87,11 @@ void init_random_planes(const LevelInputs& in, int view, std::uint32_t iteration
   });
 }
 
-void evaluate_costs(const LevelInputs& in, int view, PlaneField& field) {
+void evaluate_costs(const LevelInputs& in, int view, PlaneField& field,
+                    const std::vector<std::uint8_t>* unchanged) {
   for_each_pixel(field.width, field.height, -1, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
+    if (unchanged && (*unchanged)[index]) return;
     field.cost[index] = plane_cost(in, view, x, y, &field.planes[4 * static_cast<size_t>(index)],
                                    kNoBound);
   });

@@ -51,8 +51,12 @@ struct SearchSchedule {
 void init_random_planes(const LevelInputs& in, int view, std::uint32_t iteration,
                         PlaneField& field);
 
-// Costs of the planes already in `field` (after carrying them from a coarser level).
-void evaluate_costs(const LevelInputs& in, int view, PlaneField& field);
+// Costs of the planes already in `field` (after carrying them from a coarser level, or
+// after the filling changed some). Pixels where `unchanged` (may be null) is nonzero keep
+// their cost: their plane is the one it was computed for, and a stored cost is always
+// its plane's full cost (a winning candidate never reaches its bound).
+void evaluate_costs(const LevelInputs& in, int view, PlaneField& field,
+                    const std::vector<std::uint8_t>* unchanged = nullptr);
 
 // Pixels of `colour` ((x + y) % 2) try the planes of their PMS_SPATIAL_CANDIDATES
 // neighbours of the other colour, confident ones only the schedule's nearest.

@@ -49,14 +49,16 @@ void run_iteration(const LevelInputs& in, const SearchSchedule& schedule, std::u
 }
 
 // Both views' pixels whose disparities fail the left/right check take the background
-// plane of their row (fill_inconsistent).
+// plane of their row (fill_inconsistent); `consistent` gets each view's check, the
+// pixels whose planes stayed.
 void fill_both_views(const std::vector<float> disparity[2], const StereoParams& params,
-                     int threads, PlaneField fields[2]) {
+                     int threads, PlaneField fields[2],
+                     std::vector<std::uint8_t> consistent[2]) {
   for (int view = 0; view < 2; ++view) {
-    const std::vector<std::uint8_t> consistent =
+    consistent[view] =
         left_right_check(disparity[view], disparity[1 - view], fields[view].width,
                          fields[view].height, view, params.lr_tolerance, threads);
-    fields[view].planes = fill_inconsistent(fields[view].planes, consistent, fields[view].width,
+    fields[view].planes = fill_inconsistent(fields[view].planes, consistent[view], fields[view].width,
                                             fields[view].height, params.fill_max_extrapolation,
                                             threads);
   }
@@ -134,8 +136,10 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
     if (plan.refill_iterations > 0) {
       std::vector<float> disparity[2];
       confidence_from_planes(fields, threads, disparity, confidence);
-      fill_both_views(disparity, params, threads, fields);
-      for (int view = 0; view < 2; ++view) evaluate_costs(in, view, fields[view]);
+      std::vector<std::uint8_t> consistent[2];
+      fill_both_views(disparity, params, threads, fields, consistent);
+      // Only the filled pixels' planes changed.
+      for (int view = 0; view < 2; ++view) evaluate_costs(in, view, fields[view], &consistent[view]);
       const std::vector<float>* refill_trusted =
           plan.refill_use_confidence ? confidence : nullptr;
       for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
@@ -149,7 +153,10 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
     if (plan.compute_confidence) {
       std::vector<float> disparity[2];
       confidence_from_planes(fields, threads, disparity, confidence);
-      if (plan.fill_before_carry) fill_both_views(disparity, params, threads, fields);
+      if (plan.fill_before_carry) {
+        std::vector<std::uint8_t> consistent[2];
+        fill_both_views(disparity, params, threads, fields, consistent);
+      }
     }
     result.timings.push_back({plan.name, seconds_since(start)});
   }

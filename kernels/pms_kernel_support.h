@@ -636,14 +636,14 @@ inline void pms_batch_set_unbounded(PmsCandidateBatch* batch, int lane, int acti
   batch->bound[lane] = active ? PMS_NO_BOUND : 0.0f;
 }
 
-/* Costs every lane's plane at once and writes the active lanes' costs. */
+/* Costs every lane's plane at once and writes the costs of the lanes that try. */
 inline void pms_batch_store_costs(PmsCandidateBatch* batch, const PmsCostInputs* in,
                                   const PmsLanes* lanes, int y, int width,
                                   __global float* cost) {
   pms_floatv costs[1];
   pms_cost_lanes_group(in, lanes, y, batch, 1, costs);
   for (int l = 0; l < PMS_LANES; ++l) {
-    if (lanes->active[l]) cost[y * width + lanes->x[l]] = PMS_LANE(costs[0], l);
+    if (batch->tries[l]) cost[y * width + lanes->x[l]] = PMS_LANE(costs[0], l);
   }
 }
 

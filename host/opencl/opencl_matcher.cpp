@@ -95,18 +95,19 @@ void run_iteration(OpenClStages& stages, const DeviceLevel& in, const SearchSche
 }
 
 // Both views' pixels that fail the left/right check take the background plane
-// (stereo_pipeline.cpp's fill_both_views).
+// (stereo_pipeline.cpp's fill_both_views); `consistent` gets each view's check.
 void fill_both_views(OpenClStages& stages, const Buffer<float> disparity[2],
-                     const StereoParams& params, DeviceField fields[2]) {
+                     const StereoParams& params, DeviceField fields[2],
+                     Buffer<std::uint8_t> consistent[2]) {
   const int width = fields[0].width;
   const int height = fields[0].height;
   const size_t pixels = fields[0].pixels();
-  Buffer<std::uint8_t> consistent(stages.context(), pixels, "consistent");
   for (int view = 0; view < 2; ++view) {
+    consistent[view] = Buffer<std::uint8_t>(stages.context(), pixels, "consistent");
     stages.left_right_check(disparity[view], disparity[1 - view], width, height, view,
-                            params.lr_tolerance, consistent);
+                            params.lr_tolerance, consistent[view]);
     Buffer<float> filled(stages.context(), 4 * pixels, "filled planes");
-    stages.fill_inconsistent(fields[view].planes, consistent, width, height,
+    stages.fill_inconsistent(fields[view].planes, consistent[view], width, height,
                              params.fill_max_extrapolation, filled);
     fields[view].planes = std::move(filled);
   }
@@ -280,8 +281,12 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
     if (plan.refill_iterations > 0) {
       Buffer<float> disparity[2];
       confidence_from_planes(stages, fields, disparity, confidence);
-      fill_both_views(stages, disparity, params, fields);
-      for (int view = 0; view < 2; ++view) stages.evaluate_costs(in, view, fields[view]);
+      Buffer<std::uint8_t> consistent[2];
+      fill_both_views(stages, disparity, params, fields, consistent);
+      // Only the filled pixels' planes changed.
+      for (int view = 0; view < 2; ++view) {
+        stages.evaluate_costs(in, view, fields[view], &consistent[view]);
+      }
       const Buffer<float>* refill_trusted = plan.refill_use_confidence ? confidence : nullptr;
       for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {
         report(plan.refill_label(iteration));
@@ -294,7 +299,10 @@ StereoResult OpenClMatcher::run_stages(const cv::Mat& left_rgb8, const cv::Mat& 
     if (plan.compute_confidence) {
       Buffer<float> disparity[2];
       confidence_from_planes(stages, fields, disparity, confidence);
-      if (plan.fill_before_carry) fill_both_views(stages, disparity, params, fields);
+      if (plan.fill_before_carry) {
+        Buffer<std::uint8_t> consistent[2];
+        fill_both_views(stages, disparity, params, fields, consistent);
+      }
     }
     context.finish();
     result.timings.push_back({plan.name, seconds_since(start)});

@@ -159,9 +159,11 @@ void OpenClStages::init_random_planes(const DeviceLevel& in, int view, std::uint
   launch_dense_lanes(init_random_planes_, field.width, field.height);
 }
 
-void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& field) {
+void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& field,
+                                  const Buffer<std::uint8_t>* unchanged) {
   require_level(in, field, "evaluate_costs");
-  set_cost_args(evaluate_costs_, in, view, field.planes, field.cost);
+  if (unchanged) require_size(*unchanged, field.pixels(), "evaluate_costs");
+  set_cost_args(evaluate_costs_, in, view, unchanged, field.planes, field.cost);
   launch_dense_lanes(evaluate_costs_, field.width, field.height);
 }
 
@@ -356,7 +358,8 @@ void OpenClStages::weighted_median_all(const Buffer<float>& disparity, const Dev
   if (radius < 0) throw std::invalid_argument("weighted_median_all: bad window");
   Kernel& kernel = median_kernel("weighted_median_all", 2 * radius + 1);
   kernel.set_args(disparity, image.color, weights, image.width, image.height, radius, filtered);
-  launch(kernel, image.width, image.height);
+  // Built with PMS_LANES = cost_lanes_: one work item per that many pixels of a row.
+  launch_dense_lanes(kernel, image.width, image.height);
 }
 
 void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width, int height,
@@ -413,7 +416,8 @@ Kernel& OpenClStages::median_kernel(const std::string& name, int side) {
   if (found == weighted_median_.end()) {
     found = weighted_median_
                 .emplace(key, make_kernel(src::weighted_median, name.c_str(),
-                                          "-DPMS_MEDIAN_MAX_SAMPLES=" + std::to_string(samples)))
+                                          "-DPMS_MEDIAN_MAX_SAMPLES=" + std::to_string(samples) + " " +
+                                              lanes_option(cost_lanes_)))
                 .first;
   }
   return found->second;

@@ -51,7 +51,9 @@ class OpenClStages {
   // fallback/patchmatch_reference.cpp. `field` (and `fine`) must have their size set.
   void init_random_planes(const DeviceLevel& in, int view, std::uint32_t iteration,
                           DeviceField& field);
-  void evaluate_costs(const DeviceLevel& in, int view, DeviceField& field);
+  // `unchanged` (may be null): pixels where it is nonzero keep their cost (reference).
+  void evaluate_costs(const DeviceLevel& in, int view, DeviceField& field,
+                      const Buffer<std::uint8_t>* unchanged = nullptr);
   void propagate_spatial(const DeviceLevel& in, int view, int colour,
                          const SearchSchedule& schedule, const Buffer<float>* confidence,
                          DeviceField& field);

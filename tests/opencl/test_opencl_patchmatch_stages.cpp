@@ -3,6 +3,7 @@
 // byte, with a guard region after every output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <utility>
@@ -45,6 +46,31 @@ TEST_P(PatchMatchStage, EvaluateCosts) {
     DeviceField field{expected.width, expected.height, guarded(f.fields[view].planes, "planes"),
                       guarded_output<float>(expected.pixels(), "cost")};
     stages().evaluate_costs(f.device_in, view, field);
+    expect_same_field(expected, field);
+  }
+}
+
+// After the filling only the filled pixels' planes change: the others keep their cost
+// bytes (here a marker no cost can be), the filled ones get their plane's full cost.
+TEST_P(PatchMatchStage, EvaluateCostsOfChangedPixelsOnly) {
+  const LevelCase c = GetParam();
+  LevelFixture f(c);
+  advance(f);
+  const std::vector<std::uint8_t> unchanged = random_consistency(c.width, c.height, c.seed);
+  for (int view = 0; view < 2; ++view) {
+    PlaneField full = f.fields[view];
+    evaluate_costs(f.in, view, full);
+    PlaneField expected = f.fields[view];
+    std::fill(expected.cost.begin(), expected.cost.end(), -1.0f);
+    const PlaneField before = expected;
+    evaluate_costs(f.in, view, expected, &unchanged);
+    for (size_t i = 0; i < unchanged.size(); ++i) {
+      const float want = unchanged[i] ? -1.0f : full.cost[i];
+      ASSERT_EQ(std::memcmp(&expected.cost[i], &want, sizeof want), 0) << "pixel " << i;
+    }
+    DeviceField field = upload(before, "field");
+    const Buffer<std::uint8_t> device_unchanged = guarded(unchanged, "unchanged");
+    stages().evaluate_costs(f.device_in, view, field, &device_unchanged);
     expect_same_field(expected, field);
   }
 }
@@ -266,6 +292,14 @@ TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
   const Buffer<float> device_confidence = guarded(confidence, "confidence");
   for (int view = 0; view < 2; ++view) {
     DeviceField field = upload(f.fields[view], "field");
+    const std::vector<std::uint8_t> unchanged = random_consistency(c.width, c.height, c.seed);
+    const Buffer<std::uint8_t> device_unchanged = guarded(unchanged, "unchanged");
+    std::fill(f.fields[view].cost.begin(), f.fields[view].cost.end(), -1.0f);
+    DeviceField partly = upload(f.fields[view], "partly evaluated field");
+    PlaneField partly_expected = f.fields[view];
+    evaluate_costs(f.in, view, partly_expected, &unchanged);
+    lanes.evaluate_costs(f.device_in, view, partly, &device_unchanged);
+    expect_same_field(partly_expected, partly);
     evaluate_costs(f.in, view, f.fields[view]);
     lanes.evaluate_costs(f.device_in, view, field);
     expect_same_field(f.fields[view], field);

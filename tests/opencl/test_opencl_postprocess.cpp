@@ -2,7 +2,10 @@
 // byte, with a guard region after every output; inputs from tests/kernel_cases.h.
 #include <gtest/gtest.h>
 #include <cfloat>
+#include <map>
+#include <memory>
 #include <random>
+#include <tuple>
 
 #include "fallback/postprocess_reference.h"
 #include "opencl_test_support.h"
@@ -144,6 +147,47 @@ TEST_P(PostProcessStage, FlatPlanes) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, PostProcessStage, ::testing::ValuesIn(level_cases()),
                          level_case_name);
+
+// The final median runs PMS_LANES pixels per work item (the cost kernels' lane count,
+// a build option) and finds the median without sorting; with 1 lane, one pixel per item
+// and the sort. Both against the reference, on distinct disparities and on disparities
+// quantised to 4 values, where ties decide the answer.
+class MedianLanes : public ::testing::TestWithParam<std::tuple<int, LevelCase>> {};
+
+TEST_P(MedianLanes, WeightedMedianAllMatchesTheReference) {
+  const int lanes = std::get<0>(GetParam());
+  const LevelCase& c = std::get<1>(GetParam());
+  static std::map<int, std::unique_ptr<OpenClStages>> built_with;
+  std::unique_ptr<OpenClStages>& built = built_with[lanes];
+  if (!built) built = std::make_unique<OpenClStages>(context(), nullptr, lanes);
+  LevelFixture f(c);
+  const MedianInputs m = median_inputs(f, c);
+  std::vector<float> quantised(m.disparity.size());
+  for (size_t i = 0; i < quantised.size(); ++i) {
+    quantised[i] = 0.5f * static_cast<float>(static_cast<int>(m.disparity[i]) % 4);
+  }
+  const std::vector<float>* inputs[] = {&m.disparity, &quantised};
+  for (const std::vector<float>* disparity : inputs) {
+    for (int radius : {0, 1, 3}) {
+      const std::vector<float> expected =
+          weighted_median_all(*disparity, f.images[PMS_VIEW_LEFT], m.weights.data(), radius, 2);
+      Buffer<float> filtered = guarded_output<float>(expected.size(), "filtered");
+      built->weighted_median_all(guarded(*disparity, "disparity"),
+                                 f.device_images[PMS_VIEW_LEFT], guarded(m.weights, "weights"),
+                                 radius, filtered);
+      EXPECT_TRUE(same_buffer(expected, filtered))
+          << "radius " << radius << (disparity == &quantised ? ", quantised" : "");
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    OneFourEightAndSixteen, MedianLanes,
+    ::testing::Combine(::testing::Values(1, 4, 8, 16), ::testing::ValuesIn(level_cases())),
+    [](const auto& info) {
+      return std::to_string(std::get<0>(info.param)) + "lanes_" +
+             case_name(std::get<1>(info.param));
+    });
 
 }  // namespace
 }  // namespace flexsight::opencl::test
