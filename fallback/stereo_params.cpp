@@ -30,6 +30,8 @@ void StereoParams::check() const {
   require(!std::isnan(gamma_distance) && gamma_distance > 0, "gamma-distance",
           "must be positive (inf: colour-only weights)");
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
+  require(std::isfinite(census_cap) && census_cap >= 0 && census_cap <= 24, "census-cap",
+          "must be in [0, 24] (24: no cap)");
   // At most 50 + 10 iterations per level keep the random generator's iteration keys
   // (iteration_key: 64 per level) distinct.
   require(iterations >= 1 && iterations <= 50, "iterations", "must be in 1..50");

@@ -49,6 +49,15 @@ struct StereoParams {
   // PianoL, MotorcycleE) and the faint texture of walls that colour differences truncated
   // at tau_color drown in. An addition to Bleyer et al.'s cost; 0 gives theirs exactly.
   float census_weight = 4.0f;
+  // The census distance counts at most this many of its 24 bits, so that a window pixel
+  // that has no true match under the plane (occluded in the other view, or on another
+  // surface) costs a bounded amount, as the colour and gradient terms are truncated at
+  // tau_color and tau_gradient. 15 MiddEval3 Q scenes, OpenCL, bad-2 all, seeds 1-5:
+  // 24 (no cap) 10.95 / 11.10 / 11.21 / 11.13 / 11.07 % (mean 11.09), 10 bits 10.93 /
+  // 10.83 / 10.92 / 10.96 / 10.91 (mean 10.91; nonocc 7.25 -> 7.10, Motorcycle 6.52 ->
+  // 6.40 on average); with seeds 1 / 2 only, 8 bits 10.87 / 11.10, 16 bits 11.18 /
+  // 11.12 (on Motorcycle alone 4-20 bits gave 6.32-6.73 %).
+  float census_cap = 10.0f;
   // Adaptive support weight exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_distance)
   // (Yoon and Kweon 2006; Bleyer et al. keep the colour factor only: gamma_distance
   // inf). Window pixels far from the centre more often lie on another surface of a

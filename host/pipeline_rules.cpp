@@ -57,7 +57,7 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.coarsest = level == levels - 1;
   plan.ndisp = level_ndisp(params.ndisp, level);
   plan.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
-               params.tau_color, params.tau_gradient, params.census_weight};
+               params.tau_color, params.tau_gradient, params.census_weight, params.census_cap};
   if (params.method == StereoMethod::PMS) {
     plan.iterations = params.iterations;
   } else {

@@ -409,6 +409,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
   const float tau_color = in->params.tau_color;
   const float tau_gradient = in->params.tau_gradient;
   const float census_weight = in->params.census_weight;
+  const float census_cap = in->params.census_cap;
   const __global float* restrict weights = in->weights;
   pms_floatv a[PMS_SPATIAL_GROUP], b[PMS_SPATIAL_GROUP], c[PMS_SPATIAL_GROUP];
   pms_floatv bound[PMS_SPATIAL_GROUP], sum[PMS_SPATIAL_GROUP], row_term[PMS_SPATIAL_GROUP];
@@ -542,8 +543,9 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
         const pms_floatv grad_diff =
             fabs(G0 - (m.gx + t * m.dgx)) + fabs(G1 - (m.gy + t * m.dgy));
         const pms_floatv nearest_census = select(m.census1, m.census0, isless(t, 0.5f));
-        const pms_floatv census =
-            PMS_TO_FLOATV(pms_popcount_v(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census)));
+        const pms_floatv census = fmin(
+            PMS_TO_FLOATV(pms_popcount_v(PMS_TO_UINTV(Q3) ^ PMS_TO_UINTV(nearest_census))),
+            census_cap);
         const pms_floatv dissimilarity = one_minus_alpha * fmin(color_diff, tau_color) +
                                          alpha * fmin(grad_diff, tau_gradient) +
                                          census_weight * census;

@@ -78,6 +78,7 @@ typedef struct {
   float tau_color;
   float tau_gradient;
   float census_weight;   /* weight of the census Hamming distance (0..24) */
+  float census_cap;      /* the distance counts at most this many bits (24: no cap) */
 } PmsCostParams;
 
 /* ---------------------------------------------------------------- random numbers */
@@ -298,7 +299,7 @@ PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, i
  * reference view against the other view (Bleyer et al. 2011, eq. 2-4, plus a census term):
  *   sum over window pixels q of  w(p, q) * [ (1 - alpha) min(|I_q - I'_q'|_1, tau_col)
  *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad)
- *                                           + census_weight * H(census_q, census'_q'') ]
+ *                                           + census_weight * min(H(census_q, census'_q''), census_cap) ]
  * with w(p, q) = exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_d) (Yoon and Kweon's
  * adaptive support weight; both factors from the `weights` table), q' = q -+ d(q)
  * (direction -1 for the left view, +1 for the right), I' linearly interpolated, H the
@@ -355,7 +356,8 @@ PMS_INLINE float pms_plane_cost(const PMS_GLOBAL float* ref_color,
       float grad_diff = PMS_FABS(g[0] - (g0[0] + t * (g1[0] - g0[0]))) +
                         PMS_FABS(g[1] - (g0[1] + t * (g1[1] - g0[1])));
       const PMS_GLOBAL float* mn = t < 0.5f ? m0 : m1;
-      float census = (float)PMS_POPCOUNT((pms_u32)q[3] ^ (pms_u32)mn[3]);
+      float census =
+          PMS_FMIN((float)PMS_POPCOUNT((pms_u32)q[3] ^ (pms_u32)mn[3]), params.census_cap);
       float dissimilarity = params.one_minus_alpha * PMS_FMIN(color_diff, params.tau_color) +
                             params.alpha * PMS_FMIN(grad_diff, params.tau_gradient) +
                             params.census_weight * census;

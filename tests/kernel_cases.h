@@ -29,6 +29,7 @@ struct LevelCase {
   int ndisp;
   std::uint32_t seed;
   float census_weight = 0.0f;
+  float census_cap = 24.0f;  // no cap
 };
 
 inline std::string case_name(const LevelCase& c) {
@@ -37,7 +38,8 @@ inline std::string case_name(const LevelCase& c) {
          std::to_string(c.ndisp) + "_seed" + std::to_string(c.seed) +
          (c.census_weight > 0
               ? "_census" + std::to_string(static_cast<int>(c.census_weight * 100))
-              : "");
+              : "") +
+         (c.census_cap < 24.0f ? "_cap" + std::to_string(static_cast<int>(c.census_cap)) : "");
 }
 // GoogleTest prints parameters in test names and messages; bytes would vary by build.
 inline void PrintTo(const LevelCase& c, std::ostream* out) { *out << case_name(c); }
@@ -47,8 +49,8 @@ inline void PrintTo(const LevelCase& c, std::ostream* out) { *out << case_name(c
 inline std::vector<LevelCase> level_cases() {
   return {{1, 1, 5, 1, 2, 1},      {7, 5, 5, 2, 4, 2},     {7, 5, 11, 1, 7, 3},
           {33, 17, 11, 2, 16, 4},  {33, 17, 35, 3, 9, 5},  {131, 93, 35, 2, 32, 6},
-          {131, 93, 11, 1, 64, 7}, {64, 9, 9, 2, 24, 8},  {7, 5, 5, 2, 4, 9, 0.1f},
-          {33, 17, 11, 2, 16, 10, 0.05f}, {131, 93, 35, 2, 32, 11, 0.1f}};
+          {131, 93, 11, 1, 64, 7}, {64, 9, 9, 2, 24, 8},  {7, 5, 5, 2, 4, 9, 0.1f, 10.0f},
+          {33, 17, 11, 2, 16, 10, 0.05f}, {131, 93, 35, 2, 32, 11, 0.1f, 6.0f}};
 }
 
 // ------------------------------------------------------------ the benchmark grid
@@ -167,7 +169,8 @@ struct ReferenceLevel {
     images[PMS_VIEW_RIGHT] = make_view_image(pair.right);
     for (int view = 0; view < 2; ++view) in.views[view] = &images[view];
     in.weights = weights.data();
-    in.cost = {c.window / 2, c.step, 0.9f, 1.0f - 0.9f, 10.0f, 2.0f, c.census_weight};
+    in.cost = {c.window / 2, c.step,          0.9f, 1.0f - 0.9f, 10.0f, 2.0f,
+               c.census_weight, c.census_cap};
     in.ndisp = c.ndisp;
     in.seed = c.seed;
     in.threads = threads;

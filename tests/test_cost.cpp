@@ -25,8 +25,9 @@ ViewImage grey_row(std::initializer_list<float> values) {
 }
 
 PmsCostParams params(int radius, int step, float tau_color, float tau_gradient,
-                     float census_weight = 0.0f) {
-  return {radius, step, 0.9f, 1.0f - 0.9f, tau_color, tau_gradient, census_weight};
+                     float census_weight = 0.0f, float census_cap = 24.0f) {
+  return {radius, step,         0.9f,       1.0f - 0.9f, tau_color, tau_gradient,
+          census_weight, census_cap};
 }
 
 float cost(const ViewImage& ref, const ViewImage& other, const std::vector<float>& weights,
@@ -95,7 +96,7 @@ double reference_cost(const ViewImage& ref, const ViewImage& other, double gamma
           std::bitset<32>(census_of(ref, qx, qy) ^ census_of(other, nearest, qy)).count();
       sum += weight * (0.1 * std::min(color, static_cast<double>(p.tau_color)) +
                        0.9 * std::min(grad, static_cast<double>(p.tau_gradient)) +
-                       p.census_weight * census);
+                       p.census_weight * std::min(census, static_cast<double>(p.census_cap)));
     }
   }
   return sum;
@@ -169,6 +170,13 @@ TEST(MatchingCost, CensusTermIsTheWeightedHammingDistance) {
   const float without =
       cost(left, right, weights, params(0, 1, 100, 100), 1, 0, 0, 0, 0.0f, -1.0f);
   EXPECT_NEAR(with_census - without, 10.0, 1e-4);
+  // Capped at 6 bits, the 20-bit distance counts 6: 0.5 * 6; a cap above 20 changes nothing.
+  const float capped =
+      cost(left, right, weights, params(0, 1, 100, 100, 0.5f, 6.0f), 1, 0, 0, 0, 0.0f, -1.0f);
+  EXPECT_NEAR(capped - without, 3.0, 1e-4);
+  const float loose =
+      cost(left, right, weights, params(0, 1, 100, 100, 0.5f, 21.0f), 1, 0, 0, 0, 0.0f, -1.0f);
+  EXPECT_EQ(loose, with_census);
 }
 
 TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
@@ -179,7 +187,9 @@ TEST(MatchingCost, AgreesWithIndependentImplementationEverywhere) {
     auto weights = make_support_weight_table(10.0f, gamma_distance);
     for (int step : {1, 2, 3}) {
       for (int radius : {1, 4, 7}) {
-        PmsCostParams p = params(radius, step, 10.0f, 2.0f, step == 2 ? 0.0f : 0.75f);
+        // Census off, on, and on with its distance capped at 9 bits.
+        PmsCostParams p = params(radius, step, 10.0f, 2.0f, step == 2 ? 0.0f : 0.75f,
+                                 step == 3 ? 9.0f : 24.0f);
         for (int y : {0, 3, h - 1}) {
           for (int x : {0, 1, 11, w - 2, w - 1}) {
             for (float direction : {-1.0f, 1.0f}) {

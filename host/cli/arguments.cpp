@@ -77,6 +77,8 @@ const std::vector<ParamOption>& param_options() {
                    &StereoParams::gamma_distance),
       float_option("census-weight", "weight of the 5x5 census distance (0 = off)",
                    &StereoParams::census_weight),
+      float_option("census-cap", "census distance counted up to this many bits (24 = no cap)",
+                   &StereoParams::census_cap),
       integer_option("iterations", "PMS: iterations on its only level", &StereoParams::iterations),
       integer_option("iterations-coarsest", "PPMS: iterations on the coarsest level",
                      &StereoParams::iterations_coarsest),

@@ -22,9 +22,10 @@ cv::Mat confidence_map(const StereoResult& result, const cv::Mat& left_rgb8,
       make_support_weight_table(params.gamma, params.gamma_distance);
   const int levels = pipeline_level_count(params, width, height);
   const PmsCostParams cost = plan_level(params, 0, levels, width, height).cost;
-  // The census term has no truncation of its own: its largest value is 24 bits.
+  // The census term counts at most census_cap of its 24 bits.
   const float max_dissimilarity = cost.one_minus_alpha * cost.tau_color +
-                                  cost.alpha * cost.tau_gradient + cost.census_weight * 24.0f;
+                                  cost.alpha * cost.tau_gradient +
+                                  cost.census_weight * cost.census_cap;
   const float* raw_left = result.raw_left.ptr<float>();
   const float* raw_right = result.raw_right.ptr<float>();
 

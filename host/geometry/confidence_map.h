@@ -7,7 +7,7 @@
 //   C_match(p) = clamp((m_max - m(p)) / (kMatchSpread m_max), 0, 1)
 //                m(p) = the final plane's matching cost divided by the sum of its support
 //                weights, i.e. the weighted mean dissimilarity; m_max = (1 - alpha) tau_col
-//                + alpha tau_grad + census_weight * 24, its ceiling
+//                + alpha tau_grad + census_weight * census_cap, its ceiling
 //
 // Why the spread: without the census term the truncations saturate for most window
 // pixels even when the plane is right (tau_grad = 2 is small next to image gradients):
