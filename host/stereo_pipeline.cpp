@@ -58,9 +58,9 @@ void fill_both_views(const std::vector<float> disparity[2], const StereoParams& 
     consistent[view] =
         left_right_check(disparity[view], disparity[1 - view], fields[view].width,
                          fields[view].height, view, params.lr_tolerance, threads);
-    fields[view].planes = fill_inconsistent(fields[view].planes, consistent[view], fields[view].width,
-                                            fields[view].height, params.fill_max_extrapolation,
-                                            threads);
+    fields[view].planes =
+        fill_inconsistent(fields[view].planes, consistent[view], fields[view].width,
+                          fields[view].height, params.fill_max_extrapolation, threads);
   }
 }
 
@@ -139,7 +139,9 @@ StereoResult run_stereo(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
       std::vector<std::uint8_t> consistent[2];
       fill_both_views(disparity, params, threads, fields, consistent);
       // Only the filled pixels' planes changed.
-      for (int view = 0; view < 2; ++view) evaluate_costs(in, view, fields[view], &consistent[view]);
+      for (int view = 0; view < 2; ++view) {
+        evaluate_costs(in, view, fields[view], &consistent[view]);
+      }
       const std::vector<float>* refill_trusted =
           plan.refill_use_confidence ? confidence : nullptr;
       for (int iteration = 1; iteration <= plan.refill_iterations; ++iteration) {

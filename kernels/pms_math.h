@@ -299,7 +299,8 @@ PMS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, i
  * reference view against the other view (Bleyer et al. 2011, eq. 2-4, plus a census term):
  *   sum over window pixels q of  w(p, q) * [ (1 - alpha) min(|I_q - I'_q'|_1, tau_col)
  *                                           + alpha min(|grad I_q - grad I'_q'|_1, tau_grad)
- *                                           + census_weight * min(H(census_q, census'_q''), census_cap) ]
+ *                                           + census_weight * min(H(census_q, census'_q''),
+ *                                                                 census_cap) ]
  * with w(p, q) = exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_d) (Yoon and Kweon's
  * adaptive support weight; both factors from the `weights` table), q' = q -+ d(q)
  * (direction -1 for the left view, +1 for the right), I' linearly interpolated, H the

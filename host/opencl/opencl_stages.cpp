@@ -416,7 +416,8 @@ Kernel& OpenClStages::median_kernel(const std::string& name, int side) {
   if (found == weighted_median_.end()) {
     found = weighted_median_
                 .emplace(key, make_kernel(src::weighted_median, name.c_str(),
-                                          "-DPMS_MEDIAN_MAX_SAMPLES=" + std::to_string(samples) + " " +
+                                          "-DPMS_MEDIAN_MAX_SAMPLES=" +
+                                              std::to_string(samples) + " " +
                                               lanes_option(cost_lanes_)))
                 .first;
   }
