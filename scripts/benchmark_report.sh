@@ -37,6 +37,8 @@ methods=(
   "pms-opencl|--device opencl --method pms"
   "ppms-reference|--device reference --scenes REFERENCE"
   "pms-reference|--device reference --method pms --scenes REFERENCE"
+  "ppms-fast-opencl|--device opencl --preset fast --repeat $repeat"
+  "ppms-fast-reference|--device reference --preset fast --scenes REFERENCE"
   "opencv-sgbm|--method sgbm --repeat $repeat"
   "opencv-bm|--method bm --repeat $repeat"
 )

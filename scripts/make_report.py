@@ -28,11 +28,15 @@ METHODS = [
     ("ppms-opencl", "PPMS (ours, OpenCL)"),
     ("pms-opencl", "PMS (ours, OpenCL)"),
     ("ppms-reference", "PPMS (ours, reference C++)"),
+    ("ppms-fast-opencl", "PPMS fast preset (ours, OpenCL)"),
+    ("ppms-fast-reference", "PPMS fast preset (ours, reference C++)"),
     ("pms-reference", "PMS (ours, reference C++)"),
     ("opencv-sgbm", "OpenCV StereoSGBM (3-way)"),
     ("opencv-bm", "OpenCV StereoBM"),
 ]
 LABEL = dict(METHODS)
+# Same bytes as their OpenCL run (the byte tests prove it): one picture is enough.
+NOT_IN_MONTAGE = {"ppms-fast-reference"}
 
 
 def load_runs(runs, dataset):
@@ -202,7 +206,8 @@ def labelled(image, text, scale):
 
 
 def montage(runs, runs_dir, dataset, data_root, scene, path, left_name, gt_loader, ndisp):
-    keys = [k for k, _ in METHODS if k in runs and scene in scenes_of(runs[k])]
+    keys = [k for k, _ in METHODS
+            if k in runs and k not in NOT_IN_MONTAGE and scene in scenes_of(runs[k])]
     left = Image.open(left_name)
     scale = min(1.0, 300 / left.width)
     top = [labelled(left, f"{scene}: left image", scale), labelled(colorize(gt_loader(), ndisp), "ground truth", scale)]
@@ -299,6 +304,13 @@ def main():
          ratio(s.get("pms-reference", {}).get("seconds"), s.get("ppms-reference", {}).get("seconds")), "x"),
         (f"OpenCL vs reference runtime, PPMS, {len(subset)} scenes (target >= 8x on 2 cores)",
          ratio(s.get("ppms-reference", {}).get("seconds"), s["ppms-opencl"]["seconds"]), "x"),
+        ("PPMS fast preset runtime, OpenCL, all scenes (s; target <= 2 s on 2 cores)",
+         a.get("ppms-fast-opencl", {}).get("seconds"), " s"),
+        ("PPMS fast preset bad-2 (all), all scenes (%; target < 12 %)",
+         a.get("ppms-fast-opencl", {}).get("bad", {}).get("2"), " %"),
+        (f"OpenCL vs reference runtime, PPMS fast preset, {len(subset)} scenes",
+         ratio(s.get("ppms-fast-reference", {}).get("seconds"),
+               s.get("ppms-fast-opencl", {}).get("seconds")), "x"),
         ("PPMS bad-2 (all) / StereoSGBM bad-2 (all), all scenes",
          ratio(a["ppms-opencl"]["bad"]["2"], a.get("opencv-sgbm", {}).get("bad", {}).get("2")), ""),
         ("PPMS bad-2 (all) minus PMS bad-2 (all), all scenes (points)",
@@ -325,7 +337,9 @@ def main():
             "(OpenCL) and OpenCV's matchers, one run otherwise. The table's 'median' column is the "
             "median over scenes.",
             f"- The reference C++ path runs on {', '.join(subset)} only ({reference_note}).",
-            "- The same PatchMatch parameters for every run (the defaults of `fallback/stereo_params.h`). "
+            "- The same PatchMatch parameters for every run (the defaults of `fallback/stereo_params.h`), "
+            "except the fast preset's rows (`--preset fast`: sparser windows and one iteration per finer "
+            "level, `apply_stereo_preset`). "
             "OpenCV: " + "StereoSGBM MODE_SGBM_3WAY, block 5, P1 8*3*25, P2 32*3*25, uniqueness 10, "
             "speckle 100/2; StereoBM block 9 with the settings of OpenCV's stereo_match sample "
             "(`host/baselines/opencv_stereo.h`).",

@@ -152,6 +152,8 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --window 7 --window-step-finest 9", "--window-step-finest");
   expect_rejected(pair + " --speckle-range inf", "--speckle-range");
   expect_rejected(pair + " --ndisp twelve", "--ndisp");
+  expect_rejected(pair + " --preset quick", "--preset");
+  expect_rejected(pair + " --preset fast --preset accurate", "--preset");
 }
 
 TEST_F(Cli, RejectsUnknownOptionsAndCommands) {

@@ -147,6 +147,15 @@ const std::vector<ParamOption>& param_options() {
 }  // namespace
 
 void consume_stereo_params(std::vector<std::string>& args, StereoParams& params) {
+  // The preset first, wherever it stands, so that explicit options override it.
+  const std::string preset = take_option(args, "--preset");
+  if (!preset.empty()) {
+    if (!take_option(args, "--preset").empty()) throw InputError("option --preset", "given twice");
+    if (!apply_stereo_preset(preset, params)) {
+      throw InputError("option --preset", std::string("expected one of ") +
+                                               stereo_preset_names() + ", got '" + preset + "'");
+    }
+  }
   std::vector<std::string> rest;
   for (size_t i = 0; i < args.size(); ++i) {
     const ParamOption* match = nullptr;
@@ -210,6 +219,9 @@ void reject_unknown_options(const std::vector<std::string>& args) {
 
 std::string stereo_params_help() {
   std::ostringstream out;
+  out << "  --preset NAME                 speed/accuracy settings: accurate (default) or fast\n"
+         "                                (window steps and iterations; the options below\n"
+         "                                override it)\n";
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
     // A name too long for the column gets its help on the next line, as --device's does.

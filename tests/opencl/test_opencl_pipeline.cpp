@@ -118,6 +118,24 @@ TEST(PipelineMemory, DeviceBuffersStayWithinTenTimesTheInputPairAndItsPlanes) {
   EXPECT_LE(matcher().peak_buffer_bytes(), 10 * yardstick);
 }
 
+// The fast preset (apply_stereo_preset) sets window steps of 3, 5 and 6 and one iteration
+// per finer level, values no case above combines: the same bytes on every output.
+TEST(PipelinePresets, FastPresetMatchesTheReferenceByteForByte) {
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
+  StereoParams params;
+  ASSERT_TRUE(apply_stereo_preset("fast", params));
+  params.ndisp = 32;
+  params.coarsest_width = 40;
+  const StereoResult expected = run_stereo(crop.left, crop.right, params);
+  const StereoResult actual = matcher().run(crop.left, crop.right, params);
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_left, actual.raw_left)) << "raw_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
+  EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
+      << "planes_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.cost_left, actual.cost_left)) << "cost_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
+}
+
 TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
   const testing_support::FixtureCrop crop = testing_support::fixture_crop();
   StereoParams params;
