@@ -169,15 +169,18 @@ def plot_runtime_vs_bad2(runs, path, all_names, subset):
             if not a["count"]:
                 continue
             times.append(a["seconds"])
-            ax.scatter(a["seconds"], a["bad"]["2"], s=60, color=f"C{index}")
-            # OpenCL and reference runs give the same bytes, hence the same height: label
-            # one to the left and the other to the right so both stay readable.
-            left = "opencl" in key
-            ax.annotate(label, (a["seconds"], a["bad"]["2"]), textcoords="offset points",
-                        xytext=(-6 if left else 6, 4), ha="right" if left else "left", fontsize=8)
+            # OpenCL and reference runs give the same bytes, hence the same height, and
+            # the PatchMatch variants sit close together: a legend keeps every name
+            # readable where labels beside the points overlapped. Reference runs are
+            # hollow, so an OpenCL point and its reference twin tell apart.
+            hollow = "reference" in key
+            ax.scatter(a["seconds"], a["bad"]["2"], s=60, label=label,
+                       facecolors="none" if hollow else f"C{index}", edgecolors=f"C{index}",
+                       linewidths=1.5)
+        ax.legend(fontsize=7, loc="upper right")
         ax.set_xscale("log")
         if times:
-            ax.set_xlim(min(times) / 3, max(times) * 30)
+            ax.set_xlim(min(times) / 3, max(times) * 3)
         ax.set_xlabel("runtime per scene (s, log scale; this machine)")
         ax.set_ylabel("bad 2, all pixels (%)")
         ax.set_title(title, fontsize=9)
