@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "fallback/stereo_params.h"
 #include "host/cli/commands.h"
 #include "host/eval/dataset.h"
 #include "host/eval/report.h"
@@ -562,6 +563,9 @@ EvalReport sample_report() {
   EvalReport report;
   report.dataset_root = "data/\"quoted\"\\path";
   report.method = "ppms";
+  report.matcher = "reference path";
+  report.parameters = {{"window", "35", true}, {"window-step", "3", false},
+                       {"gamma-distance", "inf", false}};
   report.conventions = "test conventions";
   SceneReport a;
   a.name = "Adirondack";
@@ -598,6 +602,12 @@ TEST(Report, MarkdownHasScenesNumbersAndConventions) {
                            "12.50", "20.00", "15.00", "10.00", "2.250", "718x496"}) {
     EXPECT_NE(markdown.find(text), std::string::npos) << text << "\n" << markdown;
   }
+  // Where it ran, and the parameters that differ from the defaults, as options.
+  EXPECT_NE(markdown.find("- Matcher: reference path"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("`--window-step 3 --gamma-distance inf`, the defaults otherwise"),
+            std::string::npos)
+      << markdown;
+  EXPECT_EQ(markdown.find("--window 35"), std::string::npos) << markdown;
   // Both regions are tabulated.
   EXPECT_NE(markdown.find("## all"), std::string::npos);
   EXPECT_NE(markdown.find("## nonocc"), std::string::npos);
@@ -609,6 +619,10 @@ TEST(Report, JsonParsesAndHoldsTheNumbers) {
   const Json json = parse_json(text);
   EXPECT_EQ(json["dataset_root"].text, "data/\"quoted\"\\path");
   EXPECT_EQ(json["method"].text, "ppms");
+  EXPECT_EQ(json["matcher"].text, "reference path");
+  ASSERT_EQ(json["parameters"].keys.size(), 3u);  // every one, defaults included
+  EXPECT_EQ(json["parameters"]["window"].text, "35");
+  EXPECT_EQ(json["parameters"]["gamma-distance"].text, "inf");
   ASSERT_EQ(json["scenes"].items.size(), 2u);
   const Json& a = json["scenes"][0];
   EXPECT_EQ(a["name"].text, "Adirondack");
@@ -786,7 +800,8 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
 
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
-  const int code = run_eval_command({root.string(), "--out", out.string(), "--threads", "1"});
+  const int code = run_eval_command(
+      {root.string(), "--out", out.string(), "--threads", "1", "--preset", "fast", "--seed", "5"});
   const std::string progress = testing::internal::GetCapturedStderr();
   testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0);
@@ -799,6 +814,24 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
   EXPECT_EQ(json["scenes"][0]["all"]["evaluated"].num(), 64 * 48);
   EXPECT_EQ(json["scenes"][0]["ndisp"].num(), 16);
   EXPECT_TRUE(fs::exists(out / "Tiny_error.png"));
+  // The report records how it was made: every parameter (ndisp is the scene's), the
+  // preset's among them, and the path that ran.
+  StereoParams fast;
+  apply_stereo_preset("fast", fast);
+  const Json& parameters = json["parameters"];
+  EXPECT_EQ(parameters["window-step-finest"].text, std::to_string(fast.window_step_finest));
+  EXPECT_EQ(parameters["iterations-fine"].text, std::to_string(fast.iterations_fine));
+  EXPECT_EQ(parameters["seed"].text, "5");
+  EXPECT_EQ(parameters["threads"].text, "1");
+  EXPECT_EQ(parameters["census-cap"].text, "10");
+  EXPECT_THROW(parameters["ndisp"], std::runtime_error);
+  EXPECT_FALSE(json["matcher"].text.empty());
+  const std::string markdown = read_file(out / "report.md");
+  EXPECT_NE(markdown.find("--seed 5"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("--window-step-finest " + std::to_string(fast.window_step_finest)),
+            std::string::npos)
+      << markdown;
+  EXPECT_EQ(markdown.find("--census-cap"), std::string::npos) << markdown;  // a default
 
   // The output folder can be scored again as results: same numbers, no matcher time.
   testing::internal::CaptureStdout();

@@ -1,7 +1,10 @@
-// The speed/accuracy presets (apply_stereo_preset) and how --preset combines with the
-// explicit options on the command line (consume_stereo_params).
+// The speed/accuracy presets (apply_stereo_preset), how --preset combines with the
+// explicit options on the command line (consume_stereo_params), and the record of every
+// parameter that reports carry (stereo_param_values).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -117,4 +120,34 @@ TEST(StereoPresets, TheCommandLineRejectsUnknownAndRepeatedPresets) {
   EXPECT_THROW(consume_stereo_params(twice, p), InputError);
   std::vector<std::string> missing = {"--preset"};
   EXPECT_THROW(consume_stereo_params(missing, p), InputError);
+}
+
+// What a report records reads back as the same parameters: every field, floats to the
+// last bit (infinity included), the method and the seed.
+TEST(StereoParamValues, ReadBackThroughTheCommandLineAsTheSameParameters) {
+  StereoParams original = unusual_params();
+  apply_stereo_preset("fast", original);
+  original.gamma_distance = INFINITY;
+  original.alpha = 0.1f;  // no short decimal: needs every digit
+  original.seed = 4000000000u;
+  const auto values = stereo_param_values(original);
+  std::vector<std::string> args;
+  for (const auto& [name, value] : values) {
+    EXPECT_EQ(std::count_if(values.begin(), values.end(),
+                            [&](const auto& other) { return other.first == name; }),
+              1)
+        << name;
+    args.push_back("--" + name);
+    args.push_back(value);
+  }
+  StereoParams read_back;
+  consume_stereo_params(args, read_back);
+  EXPECT_TRUE(args.empty());
+  EXPECT_EQ(stereo_param_values(read_back), values);
+  EXPECT_EQ(read_back.method, StereoMethod::PMS);
+  EXPECT_EQ(read_back.seed, 4000000000u);
+  EXPECT_EQ(read_back.alpha, 0.1f);
+  EXPECT_TRUE(std::isinf(read_back.gamma_distance));
+  EXPECT_EQ(read_back.window_step_finest, original.window_step_finest);
+  EXPECT_EQ(read_back.census_cap, original.census_cap);
 }

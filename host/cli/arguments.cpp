@@ -1,5 +1,6 @@
 #include "host/cli/arguments.h"
 
+#include <charconv>
 #include <cstring>
 #include <functional>
 #include <sstream>
@@ -13,7 +14,16 @@ struct ParamOption {
   const char* name;
   const char* help;
   std::function<void(StereoParams&, const std::string&)> set;
+  // The value as the option would take it back (set(get(p)) leaves p as it was).
+  std::function<std::string(const StereoParams&)> get;
 };
+
+// Shortest text that reads back as the same float ("inf" for infinity).
+std::string float_text(float value) {
+  char buffer[32];
+  const std::to_chars_result end = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, end.ptr);
+}
 
 std::string option_subject(const std::string& name) { return "option --" + name; }
 
@@ -39,14 +49,17 @@ float parse_float(const std::string& name, const std::string& text) {
 
 template <typename Field>
 ParamOption integer_option(const char* name, const char* help, Field StereoParams::*field) {
-  return {name, help, [name, field](StereoParams& p, const std::string& v) {
+  return {name, help,
+          [name, field](StereoParams& p, const std::string& v) {
             p.*field = static_cast<Field>(parse_integer(name, v));
-          }};
+          },
+          [field](const StereoParams& p) { return std::to_string(p.*field); }};
 }
 
 ParamOption float_option(const char* name, const char* help, float StereoParams::*field) {
   return {name, help,
-          [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); }};
+          [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); },
+          [field](const StereoParams& p) { return float_text(p.*field); }};
 }
 
 const std::vector<ParamOption>& param_options() {
@@ -60,7 +73,8 @@ const std::vector<ParamOption>& param_options() {
          } else {
            throw InputError(option_subject("method"), "expected ppms, pms, sgbm or bm, got '" + v + "'");
          }
-       }},
+       },
+       [](const StereoParams& p) { return std::string(method_name(p.method)); }},
       integer_option("ndisp", "disparity range [0, ndisp - 1]", &StereoParams::ndisp),
       integer_option("window", "support window side (odd)", &StereoParams::window),
       integer_option("window-step", "sample every n-th window row/column", &StereoParams::window_step),
@@ -138,7 +152,8 @@ const std::vector<ParamOption>& param_options() {
            throw InputError(option_subject("seed"), "must be in 0..4294967295");
          }
          p.seed = static_cast<std::uint32_t>(value);
-       }},
+       },
+       [](const StereoParams& p) { return std::to_string(p.seed); }},
       integer_option("threads", "reference-path threads (0 = all cores)", &StereoParams::threads),
   };
   return options;
@@ -215,6 +230,12 @@ void reject_unknown_options(const std::vector<std::string>& args) {
   for (const std::string& arg : args) {
     if (arg.size() > 1 && arg[0] == '-') throw InputError("option " + arg, "unknown option");
   }
+}
+
+std::vector<std::pair<std::string, std::string>> stereo_param_values(const StereoParams& params) {
+  std::vector<std::pair<std::string, std::string>> values;
+  for (const ParamOption& option : param_options()) values.emplace_back(option.name, option.get(params));
+  return values;
 }
 
 std::string stereo_params_help() {

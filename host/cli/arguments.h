@@ -1,6 +1,7 @@
 #pragma once
 // Command-line parsing shared by the subcommands.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <optional>
@@ -33,6 +34,11 @@ bool take_flag(std::vector<std::string>& args, const std::string& name);
 
 // Throws InputError ("option --x: unknown option") if any token starts with "--".
 void reject_unknown_options(const std::vector<std::string>& args);
+
+// Every StereoParams option as (name without dashes, value), in --help's order; each
+// value reads back through consume_stereo_params as the same field value. For the
+// record of a run (flexsight eval's reports).
+std::vector<std::pair<std::string, std::string>> stereo_param_values(const StereoParams& params);
 
 // One line per StereoParams option, for --help.
 std::string stereo_params_help();

@@ -320,6 +320,21 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
   return report;
 }
 
+// Every PatchMatch parameter of the run but ndisp, which each scene sets for itself.
+std::vector<ReportParameter> report_parameters(const StereoParams& params) {
+  const auto defaults = stereo_param_values(StereoParams{});
+  std::vector<ReportParameter> parameters;
+  for (const auto& [name, value] : stereo_param_values(params)) {
+    if (name == "ndisp") continue;
+    bool is_default = false;
+    for (const auto& [default_name, default_value] : defaults) {
+      if (default_name == name) is_default = default_value == value;
+    }
+    parameters.push_back({name, value, is_default});
+  }
+  return parameters;
+}
+
 }  // namespace
 
 int run_eval_command(std::vector<std::string> args) {
@@ -348,6 +363,12 @@ int run_eval_command(std::vector<std::string> args) {
                   : options.opencv           ? opencv_matcher_name(*options.opencv)
                                              : method_name(options.params.method);
   report.conventions = kConventions;
+  if (options.results_dir.empty() && options.opencv) {
+    report.matcher = opencv_matcher_settings(*options.opencv);
+  } else if (backend) {
+    report.matcher = backend->planned();
+    report.parameters = report_parameters(options.params);
+  }
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string tag = "[" + std::to_string(i + 1) + "/" + std::to_string(scenes.size()) +
                             "] " + scenes[i].name;

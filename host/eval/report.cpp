@@ -242,10 +242,27 @@ double EvalReport::average_seconds() const {
   return sum / static_cast<double>(scenes.size());
 }
 
+namespace {
+
+// The parameters that differ from the defaults, as options; the JSON has every one.
+std::string markdown_parameters(const EvalReport& report) {
+  std::string changed;
+  for (const ReportParameter& parameter : report.parameters) {
+    if (parameter.is_default) continue;
+    changed += (changed.empty() ? "`--" : " --") + parameter.name + " " + parameter.value;
+  }
+  return changed.empty() ? "the defaults (every value in report.json)"
+                         : changed + "`, the defaults otherwise (every value in report.json)";
+}
+
+}  // namespace
+
 std::string to_markdown(const EvalReport& report) {
   std::string text = "# FlexSight evaluation\n\n";
   text += "- Dataset: `" + report.dataset_root + "`\n";
   text += "- Method: " + report.method + "\n";
+  if (!report.matcher.empty()) text += "- Matcher: " + report.matcher + "\n";
+  if (!report.parameters.empty()) text += "- Parameters: " + markdown_parameters(report) + "\n";
   text += "- Conventions: " + report.conventions + "\n\n";
   text += markdown_table(report, "all", &SceneScores::all, report.average_all());
   text += "\n";
@@ -260,6 +277,13 @@ std::string to_json(const EvalReport& report) {
   out << "{\n"
       << "  \"dataset_root\": " << json_string(report.dataset_root) << ",\n"
       << "  \"method\": " << json_string(report.method) << ",\n"
+      << "  \"matcher\": " << json_string(report.matcher) << ",\n"
+      << "  \"parameters\": {";
+  for (std::size_t i = 0; i < report.parameters.size(); ++i) {
+    out << (i ? ", " : "") << json_string(report.parameters[i].name) << ": "
+        << json_string(report.parameters[i].value);
+  }
+  out << "},\n"
       << "  \"conventions\": " << json_string(report.conventions) << ",\n"
       << "  \"thresholds\": [";
   for (std::size_t t = 0; t < kBadThresholds.size(); ++t) {

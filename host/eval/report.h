@@ -19,9 +19,18 @@ struct SceneReport {
   double seconds = 0;  // matcher wall time, 0 when results were read from files
 };
 
+// One matcher parameter of a run, as the command line spells it.
+struct ReportParameter {
+  std::string name;  // option name without dashes, e.g. "window-step"
+  std::string value;
+  bool is_default = true;
+};
+
 struct EvalReport {
   std::string dataset_root;
   std::string method;      // "ppms", "pms", or "files:<folder>"
+  std::string matcher;     // where it ran ("OpenCL path on #0 ...", OpenCV's settings); may be empty
+  std::vector<ReportParameter> parameters;  // every parameter of the run; none for files
   std::string conventions; // one sentence: resolution, masks, invalid = bad
   std::vector<SceneReport> scenes;
   ErrorStats average_nonocc() const;
