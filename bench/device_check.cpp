@@ -6,6 +6,7 @@
 //
 // usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] [--reference 0|1]
 //                               [--cl-platform SEL] [--cl-device SEL] [--profile]
+//                               [--preset accurate|fast]
 // MANIFEST: one scene a line, "NAME LEFT.ppm RIGHT.ppm NDISP" (paths relative to the
 // manifest's folder). Writes OUT_DIR/NAME.pfm (OpenCL result) and a Markdown table on
 // stdout: per scene the median and fastest end-to-end time of `repeat` runs (upload,
@@ -90,7 +91,8 @@ double median(std::vector<double> v) {
 int run(int argc, char** argv) {
   if (argc < 3) {
     std::cerr << "usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] "
-                 "[--reference 0|1] [--cl-platform SEL] [--cl-device SEL] [--profile]\n";
+                 "[--reference 0|1] [--cl-platform SEL] [--cl-device SEL] [--profile] "
+                 "[--preset accurate|fast]\n";
     return 1;
   }
   const std::string manifest = argv[1];
@@ -98,6 +100,7 @@ int run(int argc, char** argv) {
   int repeat = 5;
   bool reference = true;
   flexsight::opencl::OpenClOptions options;
+  flexsight::StereoParams params;  // the defaults, as `flexsight stereo` uses them
   for (int i = 3; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -116,6 +119,12 @@ int run(int argc, char** argv) {
       options.device = argv[++i];
     } else if (arg == "--profile") {
       options.profile = true;
+    } else if (arg == "--preset" && has_value) {
+      const std::string name = argv[++i];
+      if (!flexsight::apply_stereo_preset(name, params)) {
+        throw InputError("--preset", std::string("expected one of ") +
+                                         flexsight::stereo_preset_names() + ", got '" + name + "'");
+      }
     } else {
       throw InputError(arg, "unknown option or missing value");
     }
@@ -131,7 +140,6 @@ int run(int argc, char** argv) {
             << "kernel build: " << build_s << " s\n\n"
             << "| scene | size | ndisp | OpenCL median (ms) | OpenCL fastest (ms) | runs | "
                "reference (s) | same bytes |\n|---|---|---:|---:|---:|---:|---:|---|\n";
-  flexsight::StereoParams params;  // the defaults, as `flexsight stereo` uses them
   bool all_same = true;
   std::vector<double> medians;
   for (const Scene& s : scenes) {

@@ -4,8 +4,9 @@
 # OpenCL loader at it, then times the matcher on every scene through OpenCL and
 # compares its bytes with the reference path run on the same machine, then again with
 # one pixel per work item (FLEXSIGHT_CL_LANES=1). Everything it finds goes to $OUT:
-# probe.txt, device_check.md, device_check_lanes1.md and lanes1_cmp.txt, the profiles
-# and the disparities (disp.tar.gz, to score here with `flexsight eval DATA --results DIR`).
+# probe.txt, device_check.md, device_check_lanes1.md and lanes1_cmp.txt,
+# device_check_fast.md (the fast preset), the profiles and the disparities (disp.tar.gz
+# and fast.tar.gz, to score here with `flexsight eval DATA --results DIR`).
 # usage (through the device tool): scripts/device_run.sh [REPEAT [SCENE ...]]
 # (SCENEs: a subset of the bundle's, e.g. for a rehearsal on PoCL here)
 set -uo pipefail
@@ -62,6 +63,13 @@ for f in "$out"/disp/*.pfm; do
 done > "$out/lanes1_cmp.txt"
 echo "lanes 1 against 8: $compared disparities compared" >> "$out/lanes1_cmp.txt"
 cat "$out/lanes1_cmp.txt"
+# The fast preset (flexsight --preset fast) with the GPU setting, timed only: its
+# disparities come back to be scored here (fast.tar.gz; PoCL's run of the same preset
+# gave 11.55 % bad-2 all with seed 1).
+mkdir -p "$out/fast"
+FLEXSIGHT_CL_LANES=1 .device/bin/flexsight_device_check "$scenes/manifest.txt" "$out/fast" \
+  --repeat "$repeat" --reference 0 --preset fast 2>&1 | tee "$out/device_check_fast.md"
+tar -C "$out" -czf "$out/fast.tar.gz" fast && rm -rf "$out/fast"
 # Where the time goes on this device: one profiled run of three scenes (device time per
 # kernel from OpenCL events; profiling adds its own overhead, so not the timings above).
 head -3 "$scenes/manifest.txt" > "$scenes/profile.txt"
