@@ -826,6 +826,7 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
   EXPECT_EQ(parameters["census-cap"].text, "10");
   EXPECT_THROW(parameters["ndisp"], std::runtime_error);
   EXPECT_FALSE(json["matcher"].text.empty());
+  EXPECT_EQ(json["scenes"][0]["matcher"].text, json["matcher"].text);  // what ran there
   const std::string markdown = read_file(out / "report.md");
   EXPECT_NE(markdown.find("--seed 5"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("--window-step-finest " + std::to_string(fast.window_step_finest)),
@@ -843,6 +844,9 @@ TEST(EvalCommand, RunsTheMatcherAndWritesItsDisparity) {
   ASSERT_EQ(rescore, 0);
   const Json again = parse_json(read_file(dir / "out2" / "report.json"));
   EXPECT_EQ(again["scenes"][0]["seconds"].num(), 0);
+  EXPECT_EQ(again["scenes"][0]["matcher"].text, "");  // read from files: no matcher
+  EXPECT_EQ(again["matcher"].text, "");
+  EXPECT_TRUE(again["parameters"].keys.empty());
   for (const char* region : {"all", "nonocc"}) {
     for (const char* key : {"bad_0.5", "bad_1", "bad_2", "avg_error", "density"}) {
       EXPECT_EQ(again["scenes"][0][region][key].num(), json["scenes"][0][region][key].num())

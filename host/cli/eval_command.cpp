@@ -205,6 +205,7 @@ struct MatchOutcome {
   cv::Mat disparity;
   cv::Mat confidence;  // empty when results come from files without a _conf.pfm
   double seconds = 0;
+  std::string matcher;  // the path that ran (a device can fall back to the reference)
 };
 
 MatchOutcome run_opencv(OpenCvMatcher matcher, const Scene& scene, const std::string& tag) {
@@ -235,7 +236,7 @@ MatchOutcome run_matcher(StereoBackend& backend, const Scene& scene, StereoParam
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.3f s", elapsed.count());
   std::cerr << tag << ": " << seconds << " on the " << used << "\n";
-  return {result.disparity, confidence_map(result, pair.left, params), elapsed.count()};
+  return {result.disparity, confidence_map(result, pair.left, params), elapsed.count(), used};
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -304,6 +305,7 @@ SceneReport evaluate_scene(StereoBackend* backend, const Scene& scene, const Eva
   report.height = truth.disparity.rows;
   report.ndisp = scene.ndisp;
   report.seconds = outcome.seconds;
+  report.matcher = outcome.matcher;
   report.scores = evaluate_disparity(outcome.disparity, truth.disparity, truth.nonocc);
   report.confident = evaluate_confident(outcome.disparity, truth.disparity, outcome.confidence);
   if (!scene.calib_path.empty()) {
@@ -373,6 +375,20 @@ int run_eval_command(std::vector<std::string> args) {
     const std::string tag = "[" + std::to_string(i + 1) + "/" + std::to_string(scenes.size()) +
                             "] " + scenes[i].name;
     report.scenes.push_back(evaluate_scene(backend.get(), scenes[i], options, tag));
+  }
+  // What ran, rather than what was planned, when a device fell back on some scenes.
+  std::vector<std::string> paths;
+  for (const SceneReport& scene : report.scenes) {
+    if (!scene.matcher.empty() &&
+        std::find(paths.begin(), paths.end(), scene.matcher) == paths.end()) {
+      paths.push_back(scene.matcher);
+    }
+  }
+  if (paths.size() == 1) report.matcher = paths.front();
+  if (paths.size() > 1) {
+    report.matcher = "several (see each scene):";
+    for (const std::string& path : paths) report.matcher += " " + path + ";";
+    report.matcher.pop_back();
   }
 
   const std::string markdown = to_markdown(report);

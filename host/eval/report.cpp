@@ -197,6 +197,7 @@ std::string json_scene(const SceneReport& scene) {
       << "      \"height\": " << scene.height << ",\n"
       << "      \"ndisp\": " << scene.ndisp << ",\n"
       << "      \"seconds\": " << json_number(scene.seconds) << ",\n"
+      << "      \"matcher\": " << json_string(scene.matcher) << ",\n"
       << "      \"all\": " << json_stats(scene.scores.all, "      ") << ",\n"
       << "      \"nonocc\": " << json_stats(scene.scores.nonocc, "      ");
   if (scene.confident.available) {

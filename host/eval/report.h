@@ -17,6 +17,7 @@ struct SceneReport {
   ConfidentStats confident;  // when a confidence map was at hand
   DepthStats depth;          // when the scene has a calibration
   double seconds = 0;  // matcher wall time, 0 when results were read from files
+  std::string matcher;  // the path that matched it ("reference path", ...); empty for files
 };
 
 // One matcher parameter of a run, as the command line spells it.
