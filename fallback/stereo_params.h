@@ -200,8 +200,8 @@ const char* method_name(StereoMethod method);
 // Named settings of the knobs that trade accuracy for speed (the window steps and the
 // iterations below the coarsest level); every other field keeps its value. "accurate"
 // is the defaults above. "fast" samples the windows more sparsely and runs one iteration
-// per finer level, about 3x faster for 0.6 points of bad-2 (15 MiddEval3 Q scenes,
-// 11.57 % on average over three seeds against 10.93; figures at fast_preset() in
+// per finer level, about 3x faster for 0.6-0.7 points of bad-2 (15 MiddEval3 Q scenes,
+// 11.57 % on average over seeds 1-3 against 10.89; figures at fast_preset() in
 // stereo_params.cpp). Returns false for an unknown name.
 bool apply_stereo_preset(const std::string& name, StereoParams& params);
 
