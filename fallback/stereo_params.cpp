@@ -113,7 +113,8 @@ SpeedKnobs accurate_preset() {
 // level (the finest level's refill iteration stays). 15 MiddEval3 Q scenes, OpenCL on
 // PoCL, 2 cores, 2026-12-02: bad-2 all 11.55 / 11.65 / 11.52 % with seeds 1 / 2 / 3
 // (defaults: 10.93 % with seed 1) in 1.87 s per scene (defaults 6.08 s, same hour);
-// Motorcycle 7.13 % (6.26). Tried on the way (seed 1): finest step 8 (also 25 samples,
+// Motorcycle 7.13 % (6.26). With the 4-px fill limit (fill_max_extrapolation, later
+// that day) 11.45 % (seed 1) in 1.81 s, Motorcycle 7.12 %; the sweep below ran with 2 px. Tried on the way (seed 1): finest step 8 (also 25 samples,
 // wider apart) 11.68 %; step 6 below the coarsest level too 11.70 %; two iterations on
 // the coarsest level instead of three 11.79 %; 4 spatial candidates for confident pixels
 // 12.33 %; --min-search-range 0.5 11.53 % at the same speed; steps 3 / 4 / 5 with two

@@ -60,12 +60,16 @@ SceneScores score_fixture(StereoMethod method, const char* preset = "accurate") 
 // bytes); on the 15 scenes 10.92 -> 10.95 % in 0.86x the time. Later: the census
 // distance capped at 10 bits (census_cap): PPMS here 3.78 -> 3.44 % (nonocc 1.60 ->
 // 1.66), PMS 4.27 -> 4.54 %; on the 15 scenes 11.09 -> 10.91 % (mean of seeds 1-5).
-constexpr double kRecordedPpmsBad2All = 3.44;
+// Later: the filled disparity allowed 4 px from its source instead of 2
+// (fill_max_extrapolation): PPMS here 3.44 -> 3.49 % (nonocc 1.66), PMS 4.54 -> 4.60 %;
+// on the 15 scenes 10.89 -> 10.74 % (mean of seeds 1-3).
+constexpr double kRecordedPpmsBad2All = 3.49;
 constexpr double kRecordedPpmsBad2Nonocc = 1.66;
-constexpr double kRecordedPmsBad2All = 4.54;
+constexpr double kRecordedPmsBad2All = 4.60;
 // The fast preset (apply_stereo_preset: window steps 3 / 5 / 6, one iteration per finer
-// level), recorded 2026-12-02 with the defaults above; on the 15 scenes 11.55 % (seed 1).
-constexpr double kRecordedFastPpmsBad2All = 4.02;
+// level), recorded 2026-12-02 (4.02 %, nonocc 1.87, with the 2-px fill limit; 4.00 with
+// 4 px); on the 15 scenes 11.55 -> 11.45 % (seed 1).
+constexpr double kRecordedFastPpmsBad2All = 4.00;
 constexpr double kRecordedFastPpmsBad2Nonocc = 1.87;
 constexpr double kAllowedRegression = 1.0;  // percentage points
 
