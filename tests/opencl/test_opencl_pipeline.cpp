@@ -51,6 +51,16 @@ double seconds(const std::chrono::steady_clock::time_point& start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Both views' raw disparities, the filled planes, their costs and the final disparity.
+void expect_same_outputs(const StereoResult& expected, const StereoResult& actual) {
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_left, actual.raw_left)) << "raw_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
+  EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
+      << "planes_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.cost_left, actual.cost_left)) << "cost_left";
+  EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
+}
+
 class Pipeline : public ::testing::TestWithParam<PipelineCase> {};
 
 TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
@@ -84,12 +94,7 @@ TEST_P(Pipeline, MatchesTheReferenceByteForByte) {
   const StereoResult actual = opencl.run(crop.left, crop.right, params);
   const double opencl_seconds = seconds(start);
 
-  EXPECT_TRUE(testing_support::same_bytes(expected.raw_left, actual.raw_left)) << "raw_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
-  EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
-      << "planes_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.cost_left, actual.cost_left)) << "cost_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
+  expect_same_outputs(expected, actual);
   ASSERT_EQ(expected.timings.size(), actual.timings.size());
   for (size_t i = 0; i < expected.timings.size(); ++i) {
     EXPECT_EQ(expected.timings[i].stage, actual.timings[i].stage);
@@ -128,12 +133,7 @@ TEST(PipelinePresets, FastPresetMatchesTheReferenceByteForByte) {
   params.coarsest_width = 40;
   const StereoResult expected = run_stereo(crop.left, crop.right, params);
   const StereoResult actual = matcher().run(crop.left, crop.right, params);
-  EXPECT_TRUE(testing_support::same_bytes(expected.raw_left, actual.raw_left)) << "raw_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.raw_right, actual.raw_right)) << "raw_right";
-  EXPECT_TRUE(testing_support::same_bytes(expected.planes_left, actual.planes_left))
-      << "planes_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.cost_left, actual.cost_left)) << "cost_left";
-  EXPECT_TRUE(testing_support::same_bytes(expected.disparity, actual.disparity)) << "disparity";
+  expect_same_outputs(expected, actual);
 }
 
 TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
