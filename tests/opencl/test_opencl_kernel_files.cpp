@@ -1,0 +1,69 @@
+// The kernel files themselves: every .cl of kernels/ is embedded, and each one builds
+// on its own, without any -D option, because every macro it reads has a default. That
+// keeps a file usable outside the scheduler (an offline compiler, a profiler, a bug
+// report) and catches a macro that only the scheduler happened to define.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "opencl_test_support.h"
+
+namespace flexsight::opencl::test {
+namespace {
+
+const std::vector<const KernelSource*>& all_kernel_sources() {
+  static const std::vector<const KernelSource*> sources = {
+      &kernel_sources::build_view,
+      &kernel_sources::init_random_planes,
+      &kernel_sources::evaluate_costs,
+      &kernel_sources::propagate_spatial,
+      &kernel_sources::propagate_view,
+      &kernel_sources::refine_random,
+      &kernel_sources::carry_planes_to_finer,
+      &kernel_sources::plane_disparities,
+      &kernel_sources::lr_confidence,
+      &kernel_sources::list_unsure_pixels,
+      &kernel_sources::upsample_nearest,
+      &kernel_sources::left_right_check,
+      &kernel_sources::fill_inconsistent,
+      &kernel_sources::weighted_median,
+      &kernel_sources::small_segments,
+  };
+  return sources;
+}
+
+TEST(KernelFiles, EveryClFileOfKernelsIsEmbeddedAndListedHere) {
+  std::set<std::string> on_disk;
+  for (const auto& entry : std::filesystem::directory_iterator(FLEXSIGHT_KERNEL_DIR)) {
+    if (entry.path().extension() == ".cl") on_disk.insert(entry.path().filename().string());
+  }
+  std::set<std::string> embedded;
+  for (const KernelSource* source : all_kernel_sources()) embedded.insert(source->file);
+  EXPECT_EQ(on_disk, embedded) << "a kernel file that is not embedded (host/opencl/"
+                                  "CMakeLists.txt, kernel_sources.h) or not listed above";
+}
+
+class KernelFileBuildsAlone : public ::testing::TestWithParam<const KernelSource*> {};
+
+TEST_P(KernelFileBuildsAlone, WithoutBuildOptions) {
+  const KernelSource& source = *GetParam();
+  cl_program program = nullptr;
+  ASSERT_NO_THROW(program = context().program(source)) << source.file;
+  cl_uint kernel_count = 0;
+  ASSERT_EQ(clCreateKernelsInProgram(program, 0, nullptr, &kernel_count), CL_SUCCESS);
+  EXPECT_GT(kernel_count, 0u) << source.file << " defines no kernel";
+}
+
+std::string kernel_file_name(const ::testing::TestParamInfo<const KernelSource*>& info) {
+  std::string name = info.param->file;
+  return name.substr(0, name.find('.'));
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryFile, KernelFileBuildsAlone,
+                         ::testing::ValuesIn(all_kernel_sources()), kernel_file_name);
+
+}  // namespace
+}  // namespace flexsight::opencl::test
