@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "host/eval/confidence_depth_metrics.h"
 
@@ -54,4 +55,58 @@ TEST(DepthStats, MedianAbsoluteDepthErrorInMillimetres) {
   m.disparity.at<float>(0, 1) = -1.0f;
   EXPECT_NEAR(evaluate_depth(m.disparity, m.truth, {}, camera).median_abs_mm_all, e2, 1e-6);
   EXPECT_TRUE(std::isnan(evaluate_depth(m.disparity, m.truth, {}, camera).median_abs_mm_confident));
+}
+
+namespace {
+
+// The sparsification area written out for 20 pixels kept 1, 2, ..., 20 at a time:
+// the mean over k of (bad pixels among the first k) / k, in percent.
+double area_of_order(const std::vector<bool>& bad_in_rank_order) {
+  double sum = 0, bad = 0;
+  for (size_t k = 1; k <= bad_in_rank_order.size(); ++k) {
+    bad += bad_in_rank_order[k - 1];
+    sum += bad / double(k);
+  }
+  return 100.0 * sum / double(bad_in_rank_order.size());
+}
+
+}  // namespace
+
+TEST(Sparsification, TwentyPixelsRankedWellBadlyAndAllTied) {
+  // Pixel i has rank i; pixels 3, 7, 11, 12 and 18 are bad.
+  std::vector<float> rank(20);
+  std::vector<bool> bad(20, false);
+  for (int i = 0; i < 20; ++i) rank[i] = float(i);
+  for (int i : {3, 7, 11, 12, 18}) bad[i] = true;
+  // Descending rank visits pixel 19 first.
+  std::vector<bool> visited;
+  for (int i = 19; i >= 0; --i) visited.push_back(bad[i]);
+  EXPECT_NEAR(sparsification_auc_percent(rank, bad), area_of_order(visited), 1e-9);
+
+  // The bad pixels ranked last give the optimum, ranked first the worst case.
+  std::vector<bool> last(20, false), first(20, false);
+  for (int i = 15; i < 20; ++i) last[i] = true;
+  for (int i = 0; i < 5; ++i) first[i] = true;
+  std::vector<float> negative_error(20);
+  for (int i = 0; i < 20; ++i) negative_error[i] = -float(bad[i]);
+  EXPECT_NEAR(sparsification_auc_percent(negative_error, bad), area_of_order(last), 1e-9);
+  for (int i = 0; i < 20; ++i) negative_error[i] = float(bad[i]);
+  EXPECT_NEAR(sparsification_auc_percent(negative_error, bad), area_of_order(first), 1e-9);
+  EXPECT_LT(area_of_order(last), sparsification_auc_percent(rank, bad));
+
+  // One block of equal rank: every step keeps a proportional share of its bad pixels,
+  // 5 of 20, whatever order the sort leaves them in.
+  EXPECT_NEAR(sparsification_auc_percent(std::vector<float>(20, 0.5f), bad), 25.0, 1e-9);
+  EXPECT_EQ(sparsification_auc_percent({}, {}), 0.0);
+}
+
+TEST(Sparsification, EvaluateConfidentRanksThePixelsWithGroundTruth) {
+  const Maps m;  // with truth: C 0.9 good, 0.3 good, 0.6 bad
+  const ConfidentStats stats = evaluate_confident(m.disparity, m.truth, m.confidence);
+  EXPECT_DOUBLE_EQ(stats.sparsification_auc_percent,
+                   sparsification_auc_percent({0.9f, 0.3f, 0.6f}, {false, false, true}));
+  // By the true error the bad pixel comes last.
+  EXPECT_DOUBLE_EQ(stats.optimal_auc_percent,
+                   sparsification_auc_percent({3.0f, 2.0f, 1.0f}, {false, false, true}));
+  EXPECT_LT(stats.optimal_auc_percent, stats.sparsification_auc_percent);
 }

@@ -22,6 +22,37 @@ double median(std::vector<double>& values) {
 
 }  // namespace
 
+double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad) {
+  CV_Assert(rank.size() == bad.size());
+  const size_t n = rank.size();
+  if (n == 0) return 0;
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rank[a] > rank[b]; });
+  constexpr int kSteps = 20;
+  double area = 0;
+  size_t kept = 0;        // pixels of the blocks before the current one
+  double kept_bad = 0;    // their bad count
+  size_t block_end = 0;   // one past the current block of equal rank
+  double block_bad = 0;
+  for (int k = 1; k <= kSteps; ++k) {
+    const size_t target = std::max<size_t>(1, (n * k + kSteps / 2) / kSteps);
+    // Advance whole blocks until the current one holds the target-th pixel.
+    while (block_end < target) {
+      kept = block_end;
+      kept_bad += block_bad;
+      block_bad = 0;
+      while (block_end < n && (block_end == kept || rank[order[block_end]] == rank[order[kept]])) {
+        block_bad += bad[order[block_end]];
+        ++block_end;
+      }
+    }
+    const double from_block = double(target - kept) / double(block_end - kept) * block_bad;
+    area += (kept_bad + from_block) / double(target);
+  }
+  return 100.0 * area / kSteps;
+}
+
 ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& ground_truth,
                                   const cv::Mat& confidence) {
   ConfidentStats stats;
@@ -29,6 +60,8 @@ ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& groun
   CV_Assert(disparity.size() == ground_truth.size() && confidence.size() == disparity.size());
   long known = 0;
   std::array<long, kConfidenceThresholds.size()> passed{}, bad{};
+  std::vector<float> ranks, negative_errors;
+  std::vector<bool> wrongs;
   for (int y = 0; y < ground_truth.rows; ++y) {
     for (int x = 0; x < ground_truth.cols; ++x) {
       const float truth = ground_truth.at<float>(y, x);
@@ -37,6 +70,10 @@ ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& groun
       const float d = disparity.at<float>(y, x);
       const bool wrong = !has_result(d) || std::abs(d - truth) > 2.0f;
       const float c = confidence.at<float>(y, x);
+      ranks.push_back(std::isfinite(c) ? c : -std::numeric_limits<float>::infinity());
+      negative_errors.push_back(has_result(d) ? -std::abs(d - truth)
+                                              : -std::numeric_limits<float>::infinity());
+      wrongs.push_back(wrong);
       for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
         if (!(c >= kConfidenceThresholds[t])) continue;
         ++passed[t];
@@ -45,6 +82,8 @@ ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& groun
     }
   }
   stats.available = known > 0;
+  stats.sparsification_auc_percent = sparsification_auc_percent(ranks, wrongs);
+  stats.optimal_auc_percent = sparsification_auc_percent(negative_errors, wrongs);
   for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
     stats.density_percent[t] = known ? 100.0 * passed[t] / known : 0;
     stats.bad2_percent[t] =

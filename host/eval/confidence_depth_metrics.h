@@ -3,6 +3,7 @@
 // pass a confidence threshold (and how many pass), and how far our depth is from the
 // depth of the ground-truth disparity through the same calibration, in millimetres.
 #include <array>
+#include <vector>
 #include <opencv2/core.hpp>
 
 #include "host/geometry/stereo_camera.h"
@@ -19,7 +20,18 @@ struct ConfidentStats {
   // (percent) among them.
   std::array<double, kConfidenceThresholds.size()> density_percent{};
   std::array<double, kConfidenceThresholds.size()> bad2_percent{};
+  // Sparsification (Hu and Mordohai, 2012): keep the most confident k/20 of the pixels
+  // with ground truth, k = 1..20, and average their bad-2 (percent) over the 20 steps.
+  // Lower is better; `optimal` ranks by the true error instead, the floor any confidence
+  // could reach on this result. Pixels of equal confidence count as one block, kept in
+  // proportion where a step cuts through it, so the area does not depend on their order.
+  double sparsification_auc_percent = 0;
+  double optimal_auc_percent = 0;
 };
+
+// The sparsification area of `bad` (one flag per pixel) ranked by descending `rank`; see
+// ConfidentStats. 0 for no pixels.
+double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad);
 
 struct DepthStats {
   bool available = false;

@@ -100,21 +100,27 @@ std::string markdown_confidence_and_depth(const EvalReport& report) {
     header += " C>=" + threshold_label(t) + " density (%) | C>=" + threshold_label(t) + " bad 2 (%) |";
     rule += "---:|---:|";
   }
+  header += " sparsification AUC, bad 2 (%) | optimal AUC (%) |";
+  rule += "---:|---:|";
   header += " median abs depth error, all (mm) | same, C>=" +
             threshold_label(kDepthConfidenceThreshold) + " (mm) |";
   rule += "---:|---:|";
   std::string text =
       "## confidence and depth\n\n"
       "Pixels with ground truth whose confidence (host/geometry/confidence_map.h) passes a "
-      "threshold: their share and their bad-2 (all pixels). Depth error: our depth against the "
+      "threshold: their share and their bad-2 (all pixels). Sparsification AUC: the bad-2 of "
+      "the most confident 5, 10, ..., 100 % of them, averaged (lower is better; optimal: ranked "
+      "by the true error). Depth error: our depth against the "
       "depth of the ground-truth disparity through the scene's own calibration; a pixel "
       "without a result counts as an infinite error.\n\n";
   text += header + "\n" + rule + "\n";
-  auto row = [&](const std::string& name, auto density, auto bad2, double all, double conf) {
+  auto row = [&](const std::string& name, auto density, auto bad2, double auc, double optimal,
+                 double all, double conf) {
     std::string line = "| " + name + " |";
     for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
       line += " " + cell(density(t), kPercentDecimals) + " | " + cell(bad2(t), kPercentDecimals) + " |";
     }
+    line += " " + cell(auc, kPercentDecimals) + " | " + cell(optimal, kPercentDecimals) + " |";
     return line + " " + cell(all, 1) + " | " + cell(conf, 1) + " |\n";
   };
   const double nan = std::nan("");
@@ -122,6 +128,8 @@ std::string markdown_confidence_and_depth(const EvalReport& report) {
     text += row(markdown_cell(s.name),
                 [&](size_t t) { return s.confident.available ? s.confident.density_percent[t] : nan; },
                 [&](size_t t) { return s.confident.available ? s.confident.bad2_percent[t] : nan; },
+                s.confident.available ? s.confident.sparsification_auc_percent : nan,
+                s.confident.available ? s.confident.optimal_auc_percent : nan,
                 s.depth.available ? s.depth.median_abs_mm_all : nan,
                 s.depth.available ? s.depth.median_abs_mm_confident : nan);
   }
@@ -138,6 +146,12 @@ std::string markdown_confidence_and_depth(const EvalReport& report) {
           return s.confident.available ? s.confident.bad2_percent[t] : nan;
         });
       },
+      mean_available(scenes, [&](const SceneReport& s) {
+        return s.confident.available ? s.confident.sparsification_auc_percent : nan;
+      }),
+      mean_available(scenes, [&](const SceneReport& s) {
+        return s.confident.available ? s.confident.optimal_auc_percent : nan;
+      }),
       mean_available(scenes, [&](const SceneReport& s) { return s.depth.available ? s.depth.median_abs_mm_all : nan; }),
       mean_available(scenes, [&](const SceneReport& s) {
         return s.depth.available ? s.depth.median_abs_mm_confident : nan;
@@ -213,7 +227,9 @@ std::string json_scene(const SceneReport& scene) {
     for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
       out << (t ? ", " : "") << json_number(scene.confident.bad2_percent[t]);
     }
-    out << "]}";
+    out << "], \"sparsification_auc_bad2\": "
+        << json_number(scene.confident.sparsification_auc_percent)
+        << ", \"optimal_auc_bad2\": " << json_number(scene.confident.optimal_auc_percent) << "}";
   }
   if (scene.depth.available) {
     out << ",\n      \"depth_mm\": {\"median_abs_all\": "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "fallback/image_pyramid.h"
 #include "fallback/weight_table.h"
@@ -29,20 +30,32 @@ cv::Mat confidence_map(const StereoResult& result, const cv::Mat& left_rgb8,
   const float* raw_left = result.raw_left.ptr<float>();
   const float* raw_right = result.raw_right.ptr<float>();
 
-  cv::Mat confidence(height, width, CV_32FC1);
+  cv::Mat agreement(height, width, CV_32FC1), match(height, width, CV_32FC1);
   cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y) {
       for (int x = 0; x < width; ++x) {
-        const float agreement = pms_confidence(raw_left, raw_right, width, x, y, -1.0f);
+        agreement.at<float>(y, x) = pms_confidence(raw_left, raw_right, width, x, y, -1.0f);
         const float weight_sum =
             pms_support_weight_sum(left.color.data(), weights.data(), width, height, cost, x, y);
         const float mean_cost = result.cost_left.at<float>(y, x) / weight_sum;
-        const float match = std::clamp(
+        match.at<float>(y, x) = std::clamp(
             (max_dissimilarity - mean_cost) / (kMatchSpread * max_dissimilarity), 0.0f, 1.0f);
-        confidence.at<float>(y, x) = agreement * match;
       }
     }
   });
+  cv::Mat neighbourhood;
+  cv::blur(agreement, neighbourhood, cv::Size(kAgreementWindow, kAgreementWindow),
+           cv::Point(-1, -1), cv::BORDER_REPLICATE);
+
+  cv::Mat confidence(height, width, CV_32FC1);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float own = agreement.at<float>(y, x);
+      const float around = neighbourhood.at<float>(y, x);
+      const float agreed = own > 0.5f ? around : std::min(own, around);
+      confidence.at<float>(y, x) = agreed * match.at<float>(y, x);
+    }
+  }
   return confidence;
 }
 
