@@ -11,14 +11,39 @@
 
 using namespace flexsight;
 
+namespace {
+
+// The fixture matched once with the defaults, and its confidence map.
+struct FixtureRun {
+  StereoPair pair;
+  cv::Mat truth;
+  StereoResult result;
+  cv::Mat confidence;
+};
+
+const FixtureRun& fixture_run() {
+  static const FixtureRun run = [] {
+    const std::string dir = testing_support::fixture_dir();
+    FixtureRun r;
+    r.pair = load_stereo_pair(dir + "/im0.png", dir + "/im1.png");
+    r.truth = read_pfm(dir + "/disp0GT.pfm");
+    StereoParams params;
+    params.ndisp = 32;
+    r.result = run_stereo(r.pair.left, r.pair.right, params);
+    r.confidence = confidence_map(r.result, r.pair.left, params);
+    return r;
+  }();
+  return run;
+}
+
+}  // namespace
+
 TEST(ConfidenceMap, ConfidentPixelsAreMoreOftenRight) {
-  const std::string dir = testing_support::fixture_dir();
-  const StereoPair pair = load_stereo_pair(dir + "/im0.png", dir + "/im1.png");
-  const cv::Mat truth = read_pfm(dir + "/disp0GT.pfm");
-  StereoParams params;
-  params.ndisp = 32;
-  const StereoResult result = run_stereo(pair.left, pair.right, params);
-  const cv::Mat confidence = confidence_map(result, pair.left, params);
+  const FixtureRun& run = fixture_run();
+  const StereoPair& pair = run.pair;
+  const cv::Mat& truth = run.truth;
+  const StereoResult& result = run.result;
+  const cv::Mat& confidence = run.confidence;
   ASSERT_EQ(confidence.size(), pair.left.size());
   double low, high;
   cv::minMaxLoc(confidence, &low, &high);
@@ -56,13 +81,10 @@ TEST(ConfidenceMap, ConfidentPixelsAreMoreOftenRight) {
 // right more often than ranked by the pixel's own left/right agreement, and the pixels
 // that fail the check (agreement <= 1/2) stay at or below 1/2.
 TEST(ConfidenceMap, NeighbourhoodAgreementRanksBetterThanThePixelsOwn) {
-  const std::string dir = testing_support::fixture_dir();
-  const StereoPair pair = load_stereo_pair(dir + "/im0.png", dir + "/im1.png");
-  const cv::Mat truth = read_pfm(dir + "/disp0GT.pfm");
-  StereoParams params;
-  params.ndisp = 32;
-  const StereoResult result = run_stereo(pair.left, pair.right, params);
-  const cv::Mat confidence = confidence_map(result, pair.left, params);
+  const FixtureRun& run = fixture_run();
+  const cv::Mat& truth = run.truth;
+  const StereoResult& result = run.result;
+  const cv::Mat& confidence = run.confidence;
   const int width = truth.cols;
   std::vector<float> own_rank, map_rank;
   std::vector<bool> wrong;
