@@ -191,6 +191,60 @@ def plot_runtime_vs_bad2(runs, path, all_names, subset):
     plt.close(fig)
 
 
+def mean_curve(report, field):
+    """The mean over scenes of a per-scene sparsification curve, or None when a scene lacks it."""
+    curves = [scene.get("confident", {}).get(field) for scene in report["scenes"]]
+    if not curves or any(c is None for c in curves):
+        return None
+    return [sum(values) / len(values) for values in zip(*curves)]
+
+
+def sparsification_rows(runs, all_names):
+    """(key, mean AUC, mean optimal AUC) of the methods with a confidence on every scene."""
+    rows = []
+    for key, _ in METHODS:
+        report = runs.get(key)
+        if not report or len(report["scenes"]) != len(all_names):
+            continue
+        auc = [scene.get("confident", {}).get("sparsification_auc_bad2") for scene in report["scenes"]]
+        best = [scene.get("confident", {}).get("optimal_auc_bad2") for scene in report["scenes"]]
+        if any(v is None for v in auc + best):
+            continue
+        rows.append((key, sum(auc) / len(auc), sum(best) / len(best)))
+    return rows
+
+
+def plot_sparsification(runs, path, all_names):
+    """bad-2 of the most confident share of the pixels, for each method with a confidence."""
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), dpi=110)
+    density = [5 * k for k in range(1, 21)]
+    plotted = False
+    for index, (key, label) in enumerate(METHODS):
+        report = runs.get(key)
+        if not report or len(report["scenes"]) != len(all_names):
+            continue
+        curve = mean_curve(report, "sparsification_curve_bad2")
+        optimal = mean_curve(report, "optimal_curve_bad2")
+        if curve is None or optimal is None:
+            continue
+        ax.plot(density, curve, color=f"C{index}", marker="o", markersize=3, label=label)
+        ax.plot(density, optimal, color=f"C{index}", linestyle="--", linewidth=1,
+                label=label + ", ranked by the true error")
+        plotted = True
+    if not plotted:
+        plt.close(fig)
+        return False
+    ax.set_xlabel("most confident pixels kept (%)")
+    ax.set_ylabel("bad 2 among them, all pixels (%)")
+    ax.set_title(f"Sparsification: average over {len(all_names)} scenes", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return True
+
+
 def colorize(disparity, ndisp):
     valid = np.isfinite(disparity) & (disparity >= 0)
     levels = np.clip(np.where(valid, disparity, 0) / ndisp, 0, 1)
@@ -285,6 +339,7 @@ def main():
                     os.path.join(args.out, "json", f"middlebury-{key}.json"))
 
     plot_runtime_vs_bad2(mb, os.path.join(args.out, "runtime_vs_bad2.png"), names, subset)
+    has_sparsification = plot_sparsification(mb, os.path.join(args.out, "sparsification.png"), names)
     pictures = []
     for scene in args.montage.split(","):
         if scene not in names:
@@ -365,8 +420,18 @@ def main():
             "(Z = baseline f / (d + doffs)); a pixel without a result counts as an infinite error, so a "
             "method that leaves more than half the pixels empty has no finite median. The last two "
             "columns: PPMS (OpenCL) over the pixels whose confidence is at least 0.5, and their share.", "",
-            depth_table(mb, names), "",
-            "## Pictures", "",
+            depth_table(mb, names), ""]
+    if has_sparsification:
+        text += ["## Confidence: sparsification", "",
+                 "Each method's pixels ranked by its confidence map (host/geometry/confidence_map.h), "
+                 "the bad-2 of the most confident 5, 10, ..., 100 % (all pixels with ground truth), "
+                 "averaged over the scenes; the area is the mean of that curve (lower is better), "
+                 "the optimum ranks by the true error.", "",
+                 "| method | sparsification AUC, bad 2 (%) | optimal AUC (%) |", "|---|---:|---:|",
+                 *[f"| {LABEL[key]} | {fmt(auc)} | {fmt(best)} |"
+                   for key, auc, best in sparsification_rows(mb, names)], "",
+                 "![sparsification](sparsification.png)", ""]
+    text += ["## Pictures", "",
             "Top row: left image, ground truth, each method's disparity (same colour scale, black = no "
             "result). Bottom row: error maps (green within 2 px, yellow to red worse, magenta no result, "
             "black no ground truth).", ""]

@@ -1,6 +1,7 @@
 // Confidence-threshold and depth-error metrics on hand-made maps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -93,6 +94,9 @@ TEST(Sparsification, TwentyPixelsRankedWellBadlyAndAllTied) {
   for (int i = 0; i < 20; ++i) negative_error[i] = float(bad[i]);
   EXPECT_NEAR(sparsification_auc_percent(negative_error, bad), area_of_order(first), 1e-9);
   EXPECT_LT(area_of_order(last), sparsification_auc_percent(rank, bad));
+  // The curve behind the worst case: the first k pixels hold min(k, 5) bad ones.
+  const auto worst = sparsification_curve_percent(negative_error, bad);
+  for (int k = 1; k <= 20; ++k) EXPECT_NEAR(worst[k - 1], 100.0 * std::min(k, 5) / k, 1e-9) << k;
 
   // One block of equal rank: every step keeps a proportional share of its bad pixels,
   // 5 of 20, whatever order the sort leaves them in.
@@ -109,4 +113,10 @@ TEST(Sparsification, EvaluateConfidentRanksThePixelsWithGroundTruth) {
   EXPECT_DOUBLE_EQ(stats.optimal_auc_percent,
                    sparsification_auc_percent({3.0f, 2.0f, 1.0f}, {false, false, true}));
   EXPECT_LT(stats.optimal_auc_percent, stats.sparsification_auc_percent);
+  // Three pixels in 20 steps: the first steps keep one pixel (C 0.9, good), the middle
+  // ones two (with the bad C 0.6), the last ones all three.
+  EXPECT_DOUBLE_EQ(stats.sparsification_curve_percent[0], 0.0);
+  EXPECT_DOUBLE_EQ(stats.sparsification_curve_percent[9], 50.0);
+  EXPECT_DOUBLE_EQ(stats.sparsification_curve_percent[19], 100.0 / 3);
+  EXPECT_DOUBLE_EQ(stats.optimal_curve_percent[9], 0.0);
 }

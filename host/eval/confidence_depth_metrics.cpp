@@ -22,21 +22,22 @@ double median(std::vector<double>& values) {
 
 }  // namespace
 
-double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad) {
+std::array<double, kSparsificationSteps> sparsification_curve_percent(
+    const std::vector<float>& rank, const std::vector<bool>& bad) {
   CV_Assert(rank.size() == bad.size());
+  std::array<double, kSparsificationSteps> curve{};
   const size_t n = rank.size();
-  if (n == 0) return 0;
+  if (n == 0) return curve;
   std::vector<size_t> order(n);
   for (size_t i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rank[a] > rank[b]; });
-  constexpr int kSteps = 20;
-  double area = 0;
   size_t kept = 0;        // pixels of the blocks before the current one
   double kept_bad = 0;    // their bad count
   size_t block_end = 0;   // one past the current block of equal rank
   double block_bad = 0;
-  for (int k = 1; k <= kSteps; ++k) {
-    const size_t target = std::max<size_t>(1, (n * k + kSteps / 2) / kSteps);
+  for (int k = 1; k <= kSparsificationSteps; ++k) {
+    const size_t target =
+        std::max<size_t>(1, (n * k + kSparsificationSteps / 2) / kSparsificationSteps);
     // Advance whole blocks until the current one holds the target-th pixel.
     while (block_end < target) {
       kept = block_end;
@@ -48,9 +49,17 @@ double sparsification_auc_percent(const std::vector<float>& rank, const std::vec
       }
     }
     const double from_block = double(target - kept) / double(block_end - kept) * block_bad;
-    area += (kept_bad + from_block) / double(target);
+    curve[k - 1] = 100.0 * (kept_bad + from_block) / double(target);
   }
-  return 100.0 * area / kSteps;
+  return curve;
+}
+
+double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad) {
+  if (rank.empty()) return 0;
+  const auto curve = sparsification_curve_percent(rank, bad);
+  double sum = 0;
+  for (double value : curve) sum += value;
+  return sum / kSparsificationSteps;
 }
 
 ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& ground_truth,
@@ -82,6 +91,8 @@ ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& groun
     }
   }
   stats.available = known > 0;
+  stats.sparsification_curve_percent = sparsification_curve_percent(ranks, wrongs);
+  stats.optimal_curve_percent = sparsification_curve_percent(negative_errors, wrongs);
   stats.sparsification_auc_percent = sparsification_auc_percent(ranks, wrongs);
   stats.optimal_auc_percent = sparsification_auc_percent(negative_errors, wrongs);
   for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {

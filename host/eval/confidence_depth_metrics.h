@@ -13,6 +13,8 @@ namespace flexsight {
 inline constexpr std::array<float, 3> kConfidenceThresholds = {0.25f, 0.5f, 0.75f};
 // The threshold of the "confident pixels" depth column.
 inline constexpr float kDepthConfidenceThreshold = 0.5f;
+// Steps of the sparsification curve: the most confident 5, 10, ..., 100 %.
+inline constexpr int kSparsificationSteps = 20;
 
 struct ConfidentStats {
   bool available = false;
@@ -27,10 +29,16 @@ struct ConfidentStats {
   // proportion where a step cuts through it, so the area does not depend on their order.
   double sparsification_auc_percent = 0;
   double optimal_auc_percent = 0;
+  // The curves the areas average: bad-2 (percent) of the most confident k/20, k = 1..20.
+  std::array<double, kSparsificationSteps> sparsification_curve_percent{};
+  std::array<double, kSparsificationSteps> optimal_curve_percent{};
 };
 
-// The sparsification area of `bad` (one flag per pixel) ranked by descending `rank`; see
-// ConfidentStats. 0 for no pixels.
+// The bad-2 (percent) of the first k/20 of the pixels ranked by descending `rank`, k =
+// 1..20, of `bad` (one flag per pixel); see ConfidentStats. Zeros for no pixels.
+std::array<double, kSparsificationSteps> sparsification_curve_percent(
+    const std::vector<float>& rank, const std::vector<bool>& bad);
+// The mean of that curve: the sparsification area.
 double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad);
 
 struct DepthStats {

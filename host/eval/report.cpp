@@ -229,7 +229,15 @@ std::string json_scene(const SceneReport& scene) {
     }
     out << "], \"sparsification_auc_bad2\": "
         << json_number(scene.confident.sparsification_auc_percent)
-        << ", \"optimal_auc_bad2\": " << json_number(scene.confident.optimal_auc_percent) << "}";
+        << ", \"optimal_auc_bad2\": " << json_number(scene.confident.optimal_auc_percent);
+    auto curve = [&](const char* name, const auto& values) {
+      out << ", \"" << name << "\": [";
+      for (size_t k = 0; k < values.size(); ++k) out << (k ? ", " : "") << json_number(values[k]);
+      out << "]";
+    };
+    curve("sparsification_curve_bad2", scene.confident.sparsification_curve_percent);
+    curve("optimal_curve_bad2", scene.confident.optimal_curve_percent);
+    out << "}";
   }
   if (scene.depth.available) {
     out << ",\n      \"depth_mm\": {\"median_abs_all\": "
