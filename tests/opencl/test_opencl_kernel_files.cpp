@@ -5,11 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <ostream>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "opencl_test_support.h"
+
+namespace flexsight::opencl {
+// gtest prints a failing test's parameter; the file name says more than the pointer
+// (found by argument-dependent lookup, hence this namespace).
+void PrintTo(const KernelSource* source, std::ostream* out) { *out << source->file; }
+}  // namespace flexsight::opencl
 
 namespace flexsight::opencl::test {
 namespace {
