@@ -98,6 +98,7 @@ TEST_F(Cli, SceneFolderReadsNdispFromCalibAndScoresAgainstGroundTruth) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("ndisp 32 from calib.txt"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("| nonocc |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("confidence: sparsification AUC "), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("level 0"), std::string::npos) << "progress is shown";
 }
 
@@ -385,6 +386,7 @@ TEST_F(Cli, OpenCvPeersRunThroughTheSameCommand) {
     RunResult r = run_flexsight("stereo " + scene + " -o " + output_ + " --method " + method, dir_);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("| nonocc |"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("confidence:"), std::string::npos) << "OpenCV has no confidence";
     // OpenCV leaves pixels without a result (at least its left border): +inf in the PFM.
     const cv::Mat disparity = flexsight::read_pfm(output_);
     int missing = 0;

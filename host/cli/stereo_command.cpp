@@ -16,6 +16,7 @@
 #include "host/cli/cloud_outputs.h"
 #include "host/cli/commands.h"
 #include "host/eval/colorize.h"
+#include "host/eval/confidence_depth_metrics.h"
 #include "host/eval/metrics.h"
 #include "host/geometry/confidence_map.h"
 #include "host/io/calibration.h"
@@ -92,7 +93,8 @@ StereoJob resolve_inputs(const std::vector<std::string>& positional, StereoParam
   return job;
 }
 
-void print_scores(const cv::Mat& disparity, const StereoJob& job) {
+// `confidence` may be empty (OpenCV's matchers have none).
+void print_scores(const cv::Mat& disparity, const cv::Mat& confidence, const StereoJob& job) {
   cv::Mat gt = read_pfm(job.gt);
   if (gt.size() != disparity.size() || gt.channels() != 1) {
     throw InputError(job.gt, "ground truth is " + std::to_string(gt.cols) + "x" +
@@ -115,6 +117,14 @@ void print_scores(const cv::Mat& disparity, const StereoJob& job) {
   row("all", scores.all);
   if (!mask.empty()) row("nonocc", scores.nonocc);
   std::printf("(errors in pixels at this resolution; pixels without a result count as bad)\n");
+  const ConfidentStats confident = evaluate_confident(disparity, gt, confidence);
+  if (confident.available) {
+    std::printf("confidence: sparsification AUC %.2f %% bad-2 (optimum %.2f %%); C >= 0.5 keeps "
+                "%.1f %% of the pixels at %.2f %% bad-2, C >= 0.75 %.1f %% at %.2f %%\n",
+                confident.sparsification_auc_percent, confident.optimal_auc_percent,
+                confident.density_percent[1], confident.bad2_percent[1],
+                confident.density_percent[2], confident.bad2_percent[2]);
+  }
 }
 
 // --profile: device time per kernel, from the OpenCL events of the run.
@@ -232,7 +242,8 @@ int run_stereo_command(std::vector<std::string> args) {
   if (!raw_right.empty()) write_pfm(raw_right, result.raw_right);
   if (!planes.empty()) write_pfm(planes, result.planes_left);
   cv::Mat confidence;
-  if (!opencv && (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d())) {
+  if (!opencv &&
+      (!conf.empty() || !conf_png.empty() || cloud_options.wants_3d() || !job.gt.empty())) {
     confidence = confidence_map(result, pair.left, params);
   }
   if (!conf.empty()) write_pfm(conf, confidence);
@@ -249,7 +260,7 @@ int run_stereo_command(std::vector<std::string> args) {
   }
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
   write_cloud_outputs(cloud_options, result.disparity, pair.left, result.planes_left, confidence);
-  if (!job.gt.empty()) print_scores(result.disparity, job);
+  if (!job.gt.empty()) print_scores(result.disparity, confidence, job);
   return 0;
 }
 
