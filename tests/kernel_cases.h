@@ -44,13 +44,17 @@ inline std::string case_name(const LevelCase& c) {
 // GoogleTest prints parameters in test names and messages; bytes would vary by build.
 inline void PrintTo(const LevelCase& c, std::ostream* out) { *out << case_name(c); }
 
-// The test table: awkward sizes (1x1, odd widths), windows larger than the image, steps
-// 1 to 3. Correctness lives in the corners; speed does not, hence a second table.
+// The test table: awkward sizes (1x1, odd widths, and 631x479: a prime width that no
+// lane count divides, and many work groups), windows larger than the image,
+// steps 1 to 3. Correctness lives in the corners; speed does not, hence a second table.
+// The large case keeps a small window and range (and the census term on, capped) so
+// that its reference stages stay at seconds.
 inline std::vector<LevelCase> level_cases() {
   return {{1, 1, 5, 1, 2, 1},      {7, 5, 5, 2, 4, 2},     {7, 5, 11, 1, 7, 3},
           {33, 17, 11, 2, 16, 4},  {33, 17, 35, 3, 9, 5},  {131, 93, 35, 2, 32, 6},
           {131, 93, 11, 1, 64, 7}, {64, 9, 9, 2, 24, 8},  {7, 5, 5, 2, 4, 9, 0.1f, 10.0f},
-          {33, 17, 11, 2, 16, 10, 0.05f}, {131, 93, 35, 2, 32, 11, 0.1f, 6.0f}};
+          {33, 17, 11, 2, 16, 10, 0.05f}, {131, 93, 35, 2, 32, 11, 0.1f, 6.0f},
+          {631, 479, 9, 2, 16, 12, 4.0f, 10.0f}};
 }
 
 // ------------------------------------------------------------ the benchmark grid
