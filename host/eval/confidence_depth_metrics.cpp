@@ -54,12 +54,14 @@ std::array<double, kSparsificationSteps> sparsification_curve_percent(
   return curve;
 }
 
-double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad) {
-  if (rank.empty()) return 0;
-  const auto curve = sparsification_curve_percent(rank, bad);
+double sparsification_auc_percent(const std::array<double, kSparsificationSteps>& curve) {
   double sum = 0;
   for (double value : curve) sum += value;
   return sum / kSparsificationSteps;
+}
+
+double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad) {
+  return sparsification_auc_percent(sparsification_curve_percent(rank, bad));
 }
 
 ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& ground_truth,
@@ -93,8 +95,8 @@ ConfidentStats evaluate_confident(const cv::Mat& disparity, const cv::Mat& groun
   stats.available = known > 0;
   stats.sparsification_curve_percent = sparsification_curve_percent(ranks, wrongs);
   stats.optimal_curve_percent = sparsification_curve_percent(negative_errors, wrongs);
-  stats.sparsification_auc_percent = sparsification_auc_percent(ranks, wrongs);
-  stats.optimal_auc_percent = sparsification_auc_percent(negative_errors, wrongs);
+  stats.sparsification_auc_percent = sparsification_auc_percent(stats.sparsification_curve_percent);
+  stats.optimal_auc_percent = sparsification_auc_percent(stats.optimal_curve_percent);
   for (size_t t = 0; t < kConfidenceThresholds.size(); ++t) {
     stats.density_percent[t] = known ? 100.0 * passed[t] / known : 0;
     stats.bad2_percent[t] =

@@ -38,7 +38,8 @@ struct ConfidentStats {
 // 1..20, of `bad` (one flag per pixel); see ConfidentStats. Zeros for no pixels.
 std::array<double, kSparsificationSteps> sparsification_curve_percent(
     const std::vector<float>& rank, const std::vector<bool>& bad);
-// The mean of that curve: the sparsification area.
+// The mean of that curve: the sparsification area (0 for no pixels).
+double sparsification_auc_percent(const std::array<double, kSparsificationSteps>& curve);
 double sparsification_auc_percent(const std::vector<float>& rank, const std::vector<bool>& bad);
 
 struct DepthStats {
