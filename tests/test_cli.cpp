@@ -177,7 +177,8 @@ TEST_F(Cli, RejectsAnOutputInAMissingFolderWithoutLeavingFiles) {
 TEST_F(Cli, DevicesListsWhatOpenClSees) {
   RunResult r = run_flexsight("devices", dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;  // PoCL is installed wherever the tests run
-  EXPECT_NE(r.out.find("| compute units |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| compute units | global memory | largest buffer |"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("| 0 (default) | 0: "), std::string::npos) << r.out;
   EXPECT_TRUE(r.out.find("| CPU |") != std::string::npos ||
               r.out.find("| GPU |") != std::string::npos ||
@@ -213,6 +214,56 @@ TEST_F(Cli, OneLanePerWorkItemWritesTheReferenceBytes) {
   ASSERT_EQ(one_lane.exit_code, 0) << one_lane.err;
   EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
                                                     flexsight::read_pfm(one_lane_pfm)));
+}
+
+// Issue 3's out-of-memory case, made reproducible by a device memory budget smaller
+// than the run needs: under opencl a non-zero exit naming the device, the step and the
+// buffer, and no output file; under auto the reference path's bytes, with a notice.
+TEST_F(Cli, ARunOverTheDeviceMemoryBudgetFailsNamingDeviceStepAndBuffer) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  expect_rejected(pair + " -o " + output_ + " --device opencl --cl-max-memory 16K",
+                  "--device opencl: running on #");
+  RunResult r = run_flexsight(pair + " -o " + output_ + " --device opencl --cl-max-memory 16K",
+                              dir_);
+  EXPECT_NE(r.err.find(", pyramid: creating buffer '"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("over this run's device memory budget of 0.02 MiB"), std::string::npos)
+      << r.err;
+}
+
+TEST_F(Cli, AutoRunsTheReferencePathWhenTheDeviceMemoryBudgetIsTooSmall) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  const std::string roomy_pfm = (dir_ / "roomy.pfm").string();
+  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  RunResult fallback = run_flexsight(pair + " -o " + output_ + " --cl-max-memory 16K", dir_);
+  ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+  EXPECT_NE(fallback.err.find("note: --device auto: running on #"), std::string::npos)
+      << fallback.err;
+  EXPECT_NE(fallback.err.find("device memory budget of 0.02 MiB; running the reference path"),
+            std::string::npos)
+      << fallback.err;
+  EXPECT_NE(fallback.out.find("| stage (reference path) |"), std::string::npos) << fallback.out;
+  // A budget the run fits in changes nothing: the OpenCL path, the same bytes.
+  RunResult roomy =
+      run_flexsight(pair + " -o " + roomy_pfm + " --device opencl --cl-max-memory 64M", dir_);
+  ASSERT_EQ(roomy.exit_code, 0) << roomy.err;
+  EXPECT_NE(roomy.out.find("| stage (OpenCL path on #"), std::string::npos) << roomy.out;
+  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(output_)));
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(roomy_pfm)));
+}
+
+TEST_F(Cli, RejectsADeviceMemoryBudgetThatIsNotAPositiveSize) {
+  for (const char* bad : {"0", "12X", "-5", "1.5G", "M", "99999999999999999G"}) {
+    expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --ndisp 16" +
+                        " --cl-max-memory " + bad + quick(),
+                    "option --cl-max-memory: expected a positive size such as 64M or 2G, got '" +
+                        std::string(bad) + "'");
+  }
+  expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ +
+                      " --ndisp 16 --device reference --cl-max-memory 1G" + quick(),
+                  "option --cl-max-memory: limits OpenCL device memory, but --device reference");
 }
 
 TEST_F(Cli, RejectsALaneCountTheKernelsDoNotHave) {

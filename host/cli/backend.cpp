@@ -42,15 +42,48 @@ BackendOptions take_backend_options(std::vector<std::string>& args) {
   }
   options.cl_platform = take_option(args, "--cl-platform");
   options.cl_device = take_option(args, "--cl-device");
-  const auto reject_with_reference = [&options](const std::string& value, const char* option) {
+  const auto reject_with_reference = [&options](const std::string& value, const char* option,
+                                                 const char* what = "selects an OpenCL device") {
     if (options.kind == BackendKind::Reference && !value.empty()) {
       throw InputError(std::string("option ") + option,
-                       "selects an OpenCL device, but --device reference runs no OpenCL");
+                       std::string(what) + ", but --device reference runs no OpenCL");
     }
   };
+  const std::string max_memory = take_option(args, "--cl-max-memory");
+  if (!max_memory.empty()) {
+    const std::optional<size_t> bytes = parse_byte_size(max_memory);
+    if (!bytes) {
+      throw InputError("option --cl-max-memory",
+                       "expected a positive size such as 64M or 2G, got '" + max_memory + "'");
+    }
+    options.cl_max_memory = *bytes;
+  }
   reject_with_reference(options.cl_platform, "--cl-platform");
   reject_with_reference(options.cl_device, "--cl-device");
+  reject_with_reference(max_memory, "--cl-max-memory", "limits OpenCL device memory");
   return options;
+}
+
+std::optional<size_t> parse_byte_size(const std::string& text) {
+  size_t digits = 0;
+  while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9') ++digits;
+  if (digits == 0 || digits > 15) return std::nullopt;  // 15 digits: no overflow below
+  const std::string suffix = text.substr(digits);
+  int shift = 0;
+  if (suffix.empty() || suffix == "B") {
+    shift = 0;
+  } else if (suffix == "K" || suffix == "KiB" || suffix == "KB") {
+    shift = 10;
+  } else if (suffix == "M" || suffix == "MiB" || suffix == "MB") {
+    shift = 20;
+  } else if (suffix == "G" || suffix == "GiB" || suffix == "GB") {
+    shift = 30;
+  } else {
+    return std::nullopt;
+  }
+  const unsigned long long count = std::stoull(text.substr(0, digits));
+  if (count == 0 || count > (~0ULL >> (shift + 1))) return std::nullopt;
+  return static_cast<size_t>(count << shift);
 }
 
 std::string backend_options_help() {
@@ -60,7 +93,10 @@ std::string backend_options_help() {
          "  --cl-platform N|NAME        OpenCL platform: its number or part of its name\n"
          "                              (see 'flexsight devices')\n"
          "  --cl-device N|NAME          OpenCL device: its number (within --cl-platform when\n"
-         "                              given) or part of its name\n";
+         "                              given) or part of its name\n"
+         "  --cl-max-memory SIZE        most device memory a run may hold (e.g. 64M, 1G);\n"
+         "                              a run that needs more fails under opencl, runs the\n"
+         "                              reference path under auto\n";
 }
 
 #if defined(FLEXSIGHT_HAVE_OPENCL)
@@ -87,6 +123,7 @@ StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_un
     cl.platform = options.cl_platform;
     cl.device = options.cl_device;
     cl.profile = options.profile;
+    cl.memory_budget = options.cl_max_memory;
     impl_->matcher = std::make_unique<opencl::OpenClMatcher>(cl);
   } catch (const opencl::OpenClError& error) {
     // A selector that matches nothing is a typo, not a missing device: an error naming
@@ -156,6 +193,7 @@ std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
       row.version = d.version;
       row.compute_units = d.compute_units;
       row.global_memory = d.global_memory;
+      row.max_buffer_bytes = d.max_buffer_bytes;
       row.correctly_rounded_divide_sqrt = d.correctly_rounded_divide_sqrt;
       row.is_default = d.index == default_index;
       rows.push_back(row);

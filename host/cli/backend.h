@@ -3,6 +3,7 @@
 // (host/opencl/, when this build has it) or the reference path (run_stereo), chosen by
 // --device auto|opencl|reference, --cl-platform and --cl-device.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,14 +26,22 @@ struct BackendOptions {
   // name; "" for the first GPU that rounds divide and sqrt correctly, else the first
   // such device.
   std::string cl_device;
+  // --cl-max-memory: most bytes of device buffers a run may hold at once; 0 for the
+  // device's memory. A run that needs more fails (opencl) or falls back (auto).
+  size_t cl_max_memory = 0;
   // Record the device time of every kernel launch (see StereoBackend::kernel_timings).
   bool profile = false;
 };
 
-// Removes --device, --cl-platform and --cl-device with their values from `args`.
-// Throws InputError naming the option for an unknown --device value, or for a --cl-*
-// option together with --device reference.
+// Removes --device, --cl-platform, --cl-device and --cl-max-memory with their values
+// from `args`. Throws InputError naming the option for an unknown --device value, a
+// --cl-max-memory that is not a positive size, or a --cl-* option together with
+// --device reference.
 BackendOptions take_backend_options(std::vector<std::string>& args);
+
+// "512M" -> 512 MiB: a positive whole number of bytes, or of KiB / MiB / GiB with the
+// suffix K, M or G (KiB, MiB, GiB and KB, MB, GB read the same). nullopt otherwise.
+std::optional<size_t> parse_byte_size(const std::string& text);
 
 // The --help lines of those options.
 std::string backend_options_help();
@@ -86,6 +95,7 @@ struct OpenClDeviceRow {
   std::string version;  // CL_DEVICE_VERSION
   unsigned compute_units = 0;
   unsigned long long global_memory = 0;  // bytes
+  unsigned long long max_buffer_bytes = 0;  // the largest single buffer
   bool correctly_rounded_divide_sqrt = false;  // needed by the OpenCL path
   bool is_default = false;  // the device --device auto/opencl picks without --cl-*
 };

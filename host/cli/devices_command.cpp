@@ -12,8 +12,10 @@ namespace {
 
 void print_help() {
   std::cout << "usage: flexsight devices\n"
-               "Lists every OpenCL platform and device: type, compute units, global memory and\n"
-               "whether it rounds single-precision divide and sqrt correctly (the OpenCL path\n"
+               "Lists every OpenCL platform and device: type, compute units, global memory, the\n"
+               "largest single buffer (a run holds about 240 bytes per pixel of the left image at\n"
+               "once, 83 MiB for 741x497: stereo --profile prints it, --cl-max-memory caps it)\n"
+               "and whether it rounds single-precision divide and sqrt correctly (the OpenCL path\n"
                "needs that to give the reference path's bytes). Exit code 1 when there is none.\n";
 }
 
@@ -42,13 +44,13 @@ int run_devices_command(std::vector<std::string> args) {
   const std::vector<OpenClDeviceRow> rows = list_opencl_device_rows(&why);
   if (rows.empty()) throw InputError("OpenCL", why);
   std::printf("| # | platform | device | type | compute units | global memory | "
-              "correctly rounded divide/sqrt |\n"
-              "|---|---|---|---|---|---|---|\n");
+              "largest buffer | correctly rounded divide/sqrt |\n"
+              "|---|---|---|---|---|---|---|---|\n");
   for (const OpenClDeviceRow& row : rows) {
-    std::printf("| %d%s | %d: %s | %d: %s (%s) | %s | %u | %s | %s |\n", row.index,
+    std::printf("| %d%s | %d: %s | %d: %s (%s) | %s | %u | %s | %s | %s |\n", row.index,
                 row.is_default ? " (default)" : "", row.platform_index, row.platform.c_str(),
                 row.index_in_platform, row.name.c_str(), row.version.c_str(), row.type.c_str(),
-                row.compute_units, memory_text(row.global_memory).c_str(),
+                row.compute_units, memory_text(row.global_memory).c_str(), memory_text(row.max_buffer_bytes).c_str(),
                 row.correctly_rounded_divide_sqrt ? "yes" : "no (unusable)");
   }
   std::printf("\n--cl-platform takes the platform's number or part of its name; --cl-device the\n"

@@ -3,6 +3,7 @@
 namespace flexsight::opencl {
 
 MemHandle create_buffer(Context& context, size_t bytes, const std::string& what) {
+  context.check_allocation(bytes, what);
   cl_int status = CL_SUCCESS;
   // OpenCL refuses empty buffers; one byte keeps a 0-element Buffer valid as an argument.
   MemHandle mem(clCreateBuffer(context.context(), CL_MEM_READ_WRITE, bytes > 0 ? bytes : 1,

@@ -40,6 +40,16 @@ class Context {
   size_t buffer_bytes() const { return buffer_bytes_; }
   size_t peak_buffer_bytes() const { return peak_buffer_bytes_; }
   void reset_peak() { peak_buffer_bytes_ = buffer_bytes_; }
+  // Device memory this context's buffers may hold at once: `bytes`, or 0 for the
+  // device's global memory. A camera shares its GPU with the detector, so a run can be
+  // held to a share of it; and a run that will not fit fails before its first kernel,
+  // naming the buffer, instead of wherever the driver notices.
+  void set_memory_budget(size_t bytes) { memory_budget_ = bytes; }
+  size_t memory_budget() const { return memory_budget_; }
+  // Throws OpenClError (CL_INVALID_BUFFER_SIZE: larger than the device's largest
+  // buffer; CL_MEM_OBJECT_ALLOCATION_FAILURE: the live buffers would exceed the budget
+  // or the device's memory) unless a buffer of `bytes` called `what` may be created.
+  void check_allocation(size_t bytes, const std::string& what) const;
   void note_allocated(size_t bytes) {
     buffer_bytes_ += bytes;
     if (buffer_bytes_ > peak_buffer_bytes_) peak_buffer_bytes_ = buffer_bytes_;
@@ -55,6 +65,7 @@ class Context {
   size_t max_work_item_sizes_[3] = {1, 1, 1};
   size_t buffer_bytes_ = 0;
   size_t peak_buffer_bytes_ = 0;
+  size_t memory_budget_ = 0;
 };
 
 }  // namespace flexsight::opencl

@@ -143,6 +143,7 @@ std::vector<DeviceInfo> enumerate_devices() {
       info.type = device_value<cl_device_type>(id, CL_DEVICE_TYPE);
       info.compute_units = device_value<cl_uint>(id, CL_DEVICE_MAX_COMPUTE_UNITS);
       info.global_memory = device_value<cl_ulong>(id, CL_DEVICE_GLOBAL_MEM_SIZE);
+      info.max_buffer_bytes = device_value<cl_ulong>(id, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
       info.correctly_rounded_divide_sqrt =
           (device_value<cl_device_fp_config>(id, CL_DEVICE_SINGLE_FP_CONFIG) &
            CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;

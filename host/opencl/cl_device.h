@@ -20,6 +20,7 @@ struct DeviceInfo {
   cl_device_type type = 0;
   cl_uint compute_units = 0;      // CL_DEVICE_MAX_COMPUTE_UNITS
   cl_ulong global_memory = 0;     // CL_DEVICE_GLOBAL_MEM_SIZE, bytes
+  cl_ulong max_buffer_bytes = 0;  // CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest one buffer
   // -cl-fp32-correctly-rounded-divide-sqrt is accepted: without it the kernels'
   // divisions and square roots may differ from the reference in the last bit.
   bool correctly_rounded_divide_sqrt = false;

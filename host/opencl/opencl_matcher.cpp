@@ -170,6 +170,7 @@ OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
   }
   try {
     state_ = std::make_unique<State>(device, options.profile);
+    state_->context.set_memory_budget(options.memory_budget);
   } catch (const OpenClError& error) {
     throw OpenClError("building the kernels on " + device.description() + ": " + error.what(),
                       error.status());

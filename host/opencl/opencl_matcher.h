@@ -22,6 +22,9 @@ struct OpenClOptions {
   // Platform selector: empty for every platform, a number for the platform's position,
   // otherwise part of its name.
   std::string platform;
+  // Most bytes of device buffers a run may hold at once (0: the device's memory); a run
+  // that needs more fails, naming the step and the buffer (see Context::check_allocation).
+  size_t memory_budget = 0;
 };
 
 // True when at least one OpenCL device exists; otherwise false, with the reason in

@@ -92,6 +92,51 @@ TEST(OpenClRuntime, TheContextCountsLiveBufferBytesAndTheirPeak) {
   EXPECT_EQ(ctx.peak_buffer_bytes(), before + 4024);
 }
 
+// The budget is checked before clCreateBuffer: a refused buffer is not created or
+// counted, and one that fits exactly is accepted.
+TEST(OpenClRuntime, BuffersBeyondTheMemoryBudgetAreRefusedNamingTheBuffer) {
+  Context& ctx = context();
+  struct RestoreBudget {
+    ~RestoreBudget() { context().set_memory_budget(0); }
+  } restore;
+  const size_t before = ctx.buffer_bytes();
+  ctx.set_memory_budget(before + 4096);
+  Buffer<float> fits(ctx, 1024, "fits");
+  try {
+    Buffer<float> one_more(ctx, 1, "one float too many");
+    ADD_FAILURE() << "a buffer over the budget was created";
+  } catch (const OpenClError& error) {
+    EXPECT_EQ(error.status(), CL_MEM_OBJECT_ALLOCATION_FAILURE);
+    EXPECT_NE(std::string(error.what()).find("creating buffer 'one float too many': its "),
+              std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("device memory budget"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(ctx.buffer_bytes(), before + 4096);
+}
+
+// The device's own limit on one buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE), read from the
+// driver: one byte more is refused with a sentence, not left to the driver.
+TEST(OpenClRuntime, ABufferLargerThanTheDeviceAllowsIsRefusedNamingIt) {
+  Context& ctx = context();
+  ASSERT_GT(ctx.device().max_buffer_bytes, 0u);
+  const size_t before = ctx.buffer_bytes();
+  try {
+    Buffer<std::uint8_t> huge(ctx, ctx.device().max_buffer_bytes + 1, "huge");
+    ADD_FAILURE() << "a buffer over the device's limit was created";
+  } catch (const OpenClError& error) {
+    EXPECT_EQ(error.status(), CL_INVALID_BUFFER_SIZE);
+    EXPECT_NE(std::string(error.what()).find("creating buffer 'huge': it needs "),
+              std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("more than the largest buffer the device allows"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(ctx.buffer_bytes(), before);
+}
+
 TEST(OpenClRuntime, KernelsCheckArgumentsAndWorkSizes) {
   Kernel kernel(context(), context().program(kTiny), "tiny");
   Buffer<float> out = guarded_output<float>(7 * 5, "tiny out");
