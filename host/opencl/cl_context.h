@@ -42,8 +42,8 @@ class Context {
   void reset_peak() { peak_buffer_bytes_ = buffer_bytes_; }
   // Device memory this context's buffers may hold at once: `bytes`, or 0 for the
   // device's global memory. A camera shares its GPU with the detector, so a run can be
-  // held to a share of it; and a run that will not fit fails before its first kernel,
-  // naming the buffer, instead of wherever the driver notices.
+  // held to a share of it; and a run that does not fit fails at the first buffer that
+  // does not, naming it, instead of wherever the driver notices (drivers allocate lazily).
   void set_memory_budget(size_t bytes) { memory_budget_ = bytes; }
   size_t memory_budget() const { return memory_budget_; }
   // Throws OpenClError (CL_INVALID_BUFFER_SIZE: larger than the device's largest
