@@ -199,15 +199,24 @@ def mean_curve(report, field):
     return [sum(values) / len(values) for values in zip(*curves)]
 
 
-def sparsification_rows(runs, all_names):
-    """(key, mean AUC, mean optimal AUC) of the methods with a confidence on every scene."""
-    rows = []
-    for key, _ in METHODS:
+def methods_with_confidence(runs, all_names):
+    """(colour index, key, label, report) of each method that ran every scene and scored
+    a confidence on each (OpenCV's matchers have none)."""
+    for index, (key, label) in enumerate(METHODS):
         report = runs.get(key)
         if not report or len(report["scenes"]) != len(all_names):
             continue
-        auc = [scene.get("confident", {}).get("sparsification_auc_bad2") for scene in report["scenes"]]
-        best = [scene.get("confident", {}).get("optimal_auc_bad2") for scene in report["scenes"]]
+        if any("confident" not in scene for scene in report["scenes"]):
+            continue
+        yield index, key, label, report
+
+
+def sparsification_rows(runs, all_names):
+    """(key, mean AUC, mean optimal AUC) of the methods with a confidence on every scene."""
+    rows = []
+    for _, key, _, report in methods_with_confidence(runs, all_names):
+        auc = [scene["confident"].get("sparsification_auc_bad2") for scene in report["scenes"]]
+        best = [scene["confident"].get("optimal_auc_bad2") for scene in report["scenes"]]
         if any(v is None for v in auc + best):
             continue
         rows.append((key, sum(auc) / len(auc), sum(best) / len(best)))
@@ -219,10 +228,7 @@ def plot_sparsification(runs, path, all_names):
     fig, ax = plt.subplots(figsize=(6.5, 4.2), dpi=110)
     density = [5 * k for k in range(1, 21)]
     plotted = False
-    for index, (key, label) in enumerate(METHODS):
-        report = runs.get(key)
-        if not report or len(report["scenes"]) != len(all_names):
-            continue
+    for index, _, label, report in methods_with_confidence(runs, all_names):
         curve = mean_curve(report, "sparsification_curve_bad2")
         optimal = mean_curve(report, "optimal_curve_bad2")
         if curve is None or optimal is None:
