@@ -266,6 +266,66 @@ TEST_F(Cli, RejectsADeviceMemoryBudgetThatIsNotAPositiveSize) {
                   "option --cl-max-memory: limits OpenCL device memory, but --device reference");
 }
 
+// Issue 3's "a device that fails to build a kernel", on PoCL: build options the compiler
+// refuses make every kernel's build fail, as a driver's compiler bug would.
+TEST_F(Cli, AKernelBuildFailureFailsUnderOpenClWithTheDeviceAndTheBuildLog) {
+  const std::string run = "stereo " + left_ + " " + right_ + " -o " + output_ +
+                          " --ndisp 16 --device opencl --cl-build-options -cl-no-such-option" +
+                          quick();
+  expect_rejected(run, "--device opencl: building the kernels on #0 ");
+  RunResult r = run_flexsight(run, dir_);
+  EXPECT_NE(r.err.find("clBuildProgram"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("-cl-no-such-option'); build log:\n"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, AutoRunsTheReferencePathWhenTheKernelsFailToBuild) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  RunResult fallback =
+      run_flexsight(pair + " -o " + output_ + " --cl-build-options -cl-no-such-option", dir_);
+  ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+  EXPECT_NE(fallback.err.find("note: --device auto: building the kernels on #0 "),
+            std::string::npos)
+      << fallback.err;
+  // One line: the build log is left to --device opencl.
+  EXPECT_NE(fallback.err.find("(in full with --device opencl); running the reference path\n"),
+            std::string::npos)
+      << fallback.err;
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
+                                                    flexsight::read_pfm(output_)));
+}
+
+TEST_F(Cli, BuildOptionsThatKeepTheArithmeticKeepTheReferenceBytes) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
+  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  RunResult unoptimised = run_flexsight(
+      pair + " -o " + output_ + " --device opencl --cl-build-options -cl-opt-disable", dir_);
+  ASSERT_EQ(unoptimised.exit_code, 0) << unoptimised.err;
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
+                                                    flexsight::read_pfm(output_)));
+}
+
+TEST_F(Cli, RejectsBuildOptionsThatWouldChangeTheResults) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " -o " + output_ + " --ndisp 16";
+  for (const char* bad : {"-cl-fast-relaxed-math", "-cl-mad-enable", "-cl-denorms-are-zero",
+                          "-cl-unsafe-math-optimizations"}) {
+    expect_rejected(pair + " --cl-build-options '-cl-opt-disable " + bad + "'" + quick(),
+                    "option --cl-build-options: '" + std::string(bad) +
+                        "' changes the kernels' floating-point arithmetic");
+  }
+  for (const char* bad : {"-DPMS_LANES=4", "-cl-std=CL2.0", "-UPMS_LANES"}) {
+    expect_rejected(pair + " --cl-build-options " + bad + quick(),
+                    "option --cl-build-options: '" + std::string(bad) +
+                        "' would override how the host specialises the kernels");
+  }
+  expect_rejected(pair + " --device reference --cl-build-options -cl-opt-disable" + quick(),
+                  "option --cl-build-options: builds the OpenCL kernels, but --device reference");
+}
+
 TEST_F(Cli, RejectsALaneCountTheKernelsDoNotHave) {
   RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ +
                                   " --ndisp 16 --device opencl" + quick(),

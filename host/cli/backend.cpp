@@ -7,6 +7,7 @@
 
 #if defined(FLEXSIGHT_HAVE_OPENCL)
 #include "host/opencl/cl_device.h"
+#include "host/opencl/cl_program.h"
 #include "host/opencl/opencl_matcher.h"
 #endif
 
@@ -58,9 +59,16 @@ BackendOptions take_backend_options(std::vector<std::string>& args) {
     }
     options.cl_max_memory = *bytes;
   }
+  options.cl_build_options = take_option(args, "--cl-build-options");
+#if defined(FLEXSIGHT_HAVE_OPENCL)
+  const std::string inexact = opencl::inexact_build_option(options.cl_build_options);
+  if (!inexact.empty()) throw InputError("option --cl-build-options", inexact);
+#endif
   reject_with_reference(options.cl_platform, "--cl-platform");
   reject_with_reference(options.cl_device, "--cl-device");
   reject_with_reference(max_memory, "--cl-max-memory", "limits OpenCL device memory");
+  reject_with_reference(options.cl_build_options, "--cl-build-options",
+                        "builds the OpenCL kernels");
   return options;
 }
 
@@ -96,7 +104,10 @@ std::string backend_options_help() {
          "                              given) or part of its name\n"
          "  --cl-max-memory SIZE        most device memory a run may hold (e.g. 64M, 1G);\n"
          "                              a run that needs more fails under opencl, runs the\n"
-         "                              reference path under auto\n";
+         "                              reference path under auto\n"
+         "  --cl-build-options \"OPTS\"    extra OpenCL C build options for every kernel, for\n"
+         "                              tuning on a device (e.g. -cl-nv-maxrregcount=64);\n"
+         "                              options that change the arithmetic are refused\n";
 }
 
 #if defined(FLEXSIGHT_HAVE_OPENCL)
@@ -124,6 +135,7 @@ StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_un
     cl.device = options.cl_device;
     cl.profile = options.profile;
     cl.memory_budget = options.cl_max_memory;
+    cl.build_options = options.cl_build_options;
     impl_->matcher = std::make_unique<opencl::OpenClMatcher>(cl);
   } catch (const opencl::OpenClError& error) {
     // A selector that matches nothing is a typo, not a missing device: an error naming

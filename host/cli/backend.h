@@ -29,14 +29,18 @@ struct BackendOptions {
   // --cl-max-memory: most bytes of device buffers a run may hold at once; 0 for the
   // device's memory. A run that needs more fails (opencl) or falls back (auto).
   size_t cl_max_memory = 0;
+  // --cl-build-options: extra OpenCL C build options for every kernel, for tuning on a
+  // device (e.g. "-cl-nv-maxrregcount=64"); options that would change the results are
+  // refused.
+  std::string cl_build_options;
   // Record the device time of every kernel launch (see StereoBackend::kernel_timings).
   bool profile = false;
 };
 
-// Removes --device, --cl-platform, --cl-device and --cl-max-memory with their values
-// from `args`. Throws InputError naming the option for an unknown --device value, a
-// --cl-max-memory that is not a positive size, or a --cl-* option together with
-// --device reference.
+// Removes --device, --cl-platform, --cl-device, --cl-max-memory and --cl-build-options
+// with their values from `args`. Throws InputError naming the option for an unknown
+// --device value, a --cl-max-memory that is not a positive size, build options that
+// would change the results, or a --cl-* option together with --device reference.
 BackendOptions take_backend_options(std::vector<std::string>& args);
 
 // "512M" -> 512 MiB: a positive whole number of bytes, or of KiB / MiB / GiB with the

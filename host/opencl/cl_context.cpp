@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace flexsight::opencl {
 
-Context::Context(const DeviceInfo& device) : device_(device) {
+Context::Context(const DeviceInfo& device, std::string user_build_options)
+    : device_(device), user_build_options_(std::move(user_build_options)) {
   cl_int status = CL_SUCCESS;
   const cl_context_properties properties[] = {
       CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(device.platform), 0};

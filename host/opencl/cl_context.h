@@ -12,8 +12,10 @@ namespace flexsight::opencl {
 
 class Context {
  public:
-  // Throws OpenClError when the context or queue cannot be created.
-  explicit Context(const DeviceInfo& device);
+  // Throws OpenClError when the context or queue cannot be created. `user_build_options`
+  // go after every program's own options (see inexact_build_option for what the callers
+  // refuse); a program that fails to build with them throws with its build log.
+  explicit Context(const DeviceInfo& device, std::string user_build_options = {});
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
   // Waits for the queue (errors ignored: destructors never throw).
@@ -27,7 +29,11 @@ class Context {
   size_t max_work_item_size(int dimension) const { return max_work_item_sizes_[dimension]; }
 
   cl_program program(const KernelSource& source, const std::string& extra_options = {}) {
-    return programs_.get(context_.get(), device_, source, extra_options);
+    std::string options = extra_options;
+    if (!user_build_options_.empty()) {
+      options += (options.empty() ? "" : " ") + user_build_options_;
+    }
+    return programs_.get(context_.get(), device_, source, options);
   }
   const ProgramCache& programs() const { return programs_; }
 
@@ -58,6 +64,7 @@ class Context {
 
  private:
   DeviceInfo device_;
+  std::string user_build_options_;
   ContextHandle context_;
   QueueHandle queue_;
   ProgramCache programs_;

@@ -1,5 +1,7 @@
 #include "host/opencl/cl_program.h"
 
+#include <sstream>
+
 namespace flexsight::opencl {
 namespace {
 
@@ -34,6 +36,31 @@ ProgramHandle build(cl_context context, const DeviceInfo& device, const KernelSo
 }
 
 }  // namespace
+
+std::string inexact_build_option(const std::string& options) {
+  static const char* const kChangesArithmetic[] = {
+      "-cl-fast-relaxed-math",   "-cl-mad-enable",     "-cl-unsafe-math-optimizations",
+      "-cl-finite-math-only",    "-cl-no-signed-zeros", "-cl-denorms-are-zero",
+      "-cl-single-precision-constant", "-ffp-contract", "-ffast-math"};
+  static const char* const kChangesSpecialisation[] = {"-D", "-U", "-I", "-cl-std"};
+  std::istringstream words(options);
+  std::string word;
+  while (words >> word) {
+    for (const char* bad : kChangesArithmetic) {
+      if (word.rfind(bad, 0) == 0) {
+        return "'" + word + "' changes the kernels' floating-point arithmetic, so the OpenCL "
+               "path could no longer give the reference path's bytes";
+      }
+    }
+    for (const char* bad : kChangesSpecialisation) {
+      if (word.rfind(bad, 0) == 0) {
+        return "'" + word + "' would override how the host specialises the kernels "
+               "(their -D options and OpenCL C version)";
+      }
+    }
+  }
+  return {};
+}
 
 const char* const kExactBuildOptions = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt";
 

@@ -18,6 +18,13 @@ namespace flexsight::opencl {
 // -cl-fast-relaxed-math or -cl-denorms-are-zero; contraction is off in pms_math.h.
 extern const char* const kExactBuildOptions;
 
+// Why `options` (a user's extra build options, appended to every kernel's) would break
+// the kernels' agreement with the reference, naming the offending option: fast or
+// relaxed maths, contraction, flushed denormals, or -D/-U/-I/-cl-std, which would
+// change the host's specialisation of the kernels. Empty when they are acceptable
+// (e.g. NVIDIA's -cl-nv-maxrregcount=64, -cl-opt-disable).
+std::string inexact_build_option(const std::string& options);
+
 class ProgramCache {
  public:
   // The built program of `source` for `device` with kExactBuildOptions followed by

@@ -7,12 +7,14 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "fallback/image_pyramid.h"
 #include "fallback/weight_table.h"
 #include "host/io/input_error.h"
+#include "host/opencl/cl_program.h"
 #include "host/opencl/opencl_stages.h"
 #include "host/pipeline_rules.h"
 
@@ -134,8 +136,8 @@ struct OpenClMatcher::State {
   Context context;
   KernelProfiler profiler;
   OpenClStages stages;
-  State(const DeviceInfo& device, bool profile)
-      : context(device),
+  State(const DeviceInfo& device, bool profile, const std::string& build_options)
+      : context(device, build_options),
         stages(context, profile ? &profiler : nullptr, cost_lanes_from_environment()) {}
 };
 
@@ -156,6 +158,8 @@ std::vector<std::string> list_opencl_devices() {
 }
 
 OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
+  const std::string inexact = inexact_build_option(options.build_options);
+  if (!inexact.empty()) throw std::invalid_argument("OpenCL build options: " + inexact);
   DeviceInfo device;
   try {
     device = select_device(options.platform, options.device);
@@ -169,7 +173,7 @@ OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
                       CL_INVALID_DEVICE);
   }
   try {
-    state_ = std::make_unique<State>(device, options.profile);
+    state_ = std::make_unique<State>(device, options.profile, options.build_options);
     state_->context.set_memory_budget(options.memory_budget);
   } catch (const OpenClError& error) {
     throw OpenClError("building the kernels on " + device.description() + ": " + error.what(),

@@ -25,6 +25,9 @@ struct OpenClOptions {
   // Most bytes of device buffers a run may hold at once (0: the device's memory); a run
   // that needs more fails, naming the step and the buffer (see Context::check_allocation).
   size_t memory_budget = 0;
+  // Extra OpenCL C build options for every kernel (e.g. -cl-nv-maxrregcount=64 when
+  // tuning on a device); the caller refuses inexact ones (inexact_build_option).
+  std::string build_options;
 };
 
 // True when at least one OpenCL device exists; otherwise false, with the reason in
