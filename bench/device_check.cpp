@@ -6,7 +6,7 @@
 //
 // usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] [--reference 0|1]
 //                               [--cl-platform SEL] [--cl-device SEL] [--profile]
-//                               [--preset accurate|fast]
+//                               [--preset accurate|fast] [--cl-build-options "OPTS"]
 // MANIFEST: one scene a line, "NAME LEFT.ppm RIGHT.ppm NDISP" (paths relative to the
 // manifest's folder). Writes OUT_DIR/NAME.pfm (OpenCL result) and a Markdown table on
 // stdout: per scene the median and fastest end-to-end time of `repeat` runs (upload,
@@ -24,6 +24,7 @@
 
 #include "host/io/input_error.h"
 #include "host/io/pfm.h"
+#include "host/opencl/cl_program.h"
 #include "host/opencl/opencl_matcher.h"
 #include "host/stereo_pipeline.h"
 
@@ -92,7 +93,7 @@ int run(int argc, char** argv) {
   if (argc < 3) {
     std::cerr << "usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] "
                  "[--reference 0|1] [--cl-platform SEL] [--cl-device SEL] [--profile] "
-                 "[--preset accurate|fast]\n";
+                 "[--preset accurate|fast] [--cl-build-options \"OPTS\"]\n";
     return 1;
   }
   const std::string manifest = argv[1];
@@ -119,6 +120,11 @@ int run(int argc, char** argv) {
       options.device = argv[++i];
     } else if (arg == "--profile") {
       options.profile = true;
+    } else if (arg == "--cl-build-options" && has_value) {
+      // e.g. -cl-nv-maxrregcount=64 on NVIDIA; options that change the bytes are refused
+      options.build_options = argv[++i];
+      const std::string inexact = flexsight::opencl::inexact_build_option(options.build_options);
+      if (!inexact.empty()) throw InputError("--cl-build-options", inexact);
     } else if (arg == "--preset" && has_value) {
       const std::string name = argv[++i];
       if (!flexsight::apply_stereo_preset(name, params)) {
