@@ -71,6 +71,17 @@ class Cli : public ::testing::Test {
   std::string quick() const {
     return " --window 7 --iterations 1 --iterations-coarsest 1 --iterations-fine 1 --quiet";
   }
+  // The reference path's disparity for `pair` ("stereo LEFT RIGHT <options>"), the bytes
+  // every other backend must reproduce; empty (and a failure) when the run fails.
+  cv::Mat reference_disparity(const std::string& pair) {
+    const std::string path = (dir_ / "reference.pfm").string();
+    RunResult reference = run_flexsight(pair + " -o " + path + " --device reference", dir_);
+    if (reference.exit_code != 0) {
+      ADD_FAILURE() << reference.err;
+      return cv::Mat();
+    }
+    return flexsight::read_pfm(path);
+  }
   fs::path dir_;
   std::string left_, right_, output_;
 };
@@ -205,15 +216,12 @@ TEST_F(Cli, OpenClAndReferenceWriteTheSameBytes) {
 // the default 8 and of the reference.
 TEST_F(Cli, OneLanePerWorkItemWritesTheReferenceBytes) {
   const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
-  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  const cv::Mat expected = reference_disparity(pair);
   const std::string one_lane_pfm = (dir_ / "one_lane.pfm").string();
-  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
-  ASSERT_EQ(reference.exit_code, 0) << reference.err;
   RunResult one_lane = run_flexsight(
       pair + " -o " + one_lane_pfm + " --device opencl", dir_, "FLEXSIGHT_CL_LANES=1 ");
   ASSERT_EQ(one_lane.exit_code, 0) << one_lane.err;
-  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
-                                                    flexsight::read_pfm(one_lane_pfm)));
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(one_lane_pfm)));
 }
 
 // Issue 3's out-of-memory case, made reproducible by a device memory budget smaller
@@ -232,10 +240,8 @@ TEST_F(Cli, ARunOverTheDeviceMemoryBudgetFailsNamingDeviceStepAndBuffer) {
 
 TEST_F(Cli, AutoRunsTheReferencePathWhenTheDeviceMemoryBudgetIsTooSmall) {
   const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
-  const std::string reference_pfm = (dir_ / "reference.pfm").string();
+  const cv::Mat expected = reference_disparity(pair);
   const std::string roomy_pfm = (dir_ / "roomy.pfm").string();
-  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
-  ASSERT_EQ(reference.exit_code, 0) << reference.err;
   RunResult fallback = run_flexsight(pair + " -o " + output_ + " --cl-max-memory 16K", dir_);
   ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
   EXPECT_NE(fallback.err.find("note: --device auto: running on #"), std::string::npos)
@@ -249,7 +255,6 @@ TEST_F(Cli, AutoRunsTheReferencePathWhenTheDeviceMemoryBudgetIsTooSmall) {
       run_flexsight(pair + " -o " + roomy_pfm + " --device opencl --cl-max-memory 64M", dir_);
   ASSERT_EQ(roomy.exit_code, 0) << roomy.err;
   EXPECT_NE(roomy.out.find("| stage (OpenCL path on #"), std::string::npos) << roomy.out;
-  const cv::Mat expected = flexsight::read_pfm(reference_pfm);
   EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(output_)));
   EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(roomy_pfm)));
 }
@@ -280,9 +285,7 @@ TEST_F(Cli, AKernelBuildFailureFailsUnderOpenClWithTheDeviceAndTheBuildLog) {
 
 TEST_F(Cli, AutoRunsTheReferencePathWhenTheKernelsFailToBuild) {
   const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
-  const std::string reference_pfm = (dir_ / "reference.pfm").string();
-  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
-  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  const cv::Mat expected = reference_disparity(pair);
   RunResult fallback =
       run_flexsight(pair + " -o " + output_ + " --cl-build-options -cl-no-such-option", dir_);
   ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
@@ -293,20 +296,16 @@ TEST_F(Cli, AutoRunsTheReferencePathWhenTheKernelsFailToBuild) {
   EXPECT_NE(fallback.err.find("(in full with --device opencl); running the reference path\n"),
             std::string::npos)
       << fallback.err;
-  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
-                                                    flexsight::read_pfm(output_)));
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(output_)));
 }
 
 TEST_F(Cli, BuildOptionsThatKeepTheArithmeticKeepTheReferenceBytes) {
   const std::string pair = "stereo " + left_ + " " + right_ + " --ndisp 16" + quick();
-  const std::string reference_pfm = (dir_ / "reference.pfm").string();
-  RunResult reference = run_flexsight(pair + " -o " + reference_pfm + " --device reference", dir_);
-  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  const cv::Mat expected = reference_disparity(pair);
   RunResult unoptimised = run_flexsight(
       pair + " -o " + output_ + " --device opencl --cl-build-options -cl-opt-disable", dir_);
   ASSERT_EQ(unoptimised.exit_code, 0) << unoptimised.err;
-  EXPECT_TRUE(flexsight::testing_support::same_bytes(flexsight::read_pfm(reference_pfm),
-                                                    flexsight::read_pfm(output_)));
+  EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(output_)));
 }
 
 TEST_F(Cli, RejectsBuildOptionsThatWouldChangeTheResults) {

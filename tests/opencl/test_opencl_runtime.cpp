@@ -92,6 +92,20 @@ TEST(OpenClRuntime, TheContextCountsLiveBufferBytesAndTheirPeak) {
   EXPECT_EQ(ctx.peak_buffer_bytes(), before + 4024);
 }
 
+// The message of the OpenClError that creating a buffer of `bytes` called `what` throws,
+// after checking its status; empty (and a failure) when the buffer was created.
+std::string buffer_refusal(Context& ctx, size_t bytes, const std::string& what,
+                           cl_int expected_status) {
+  try {
+    Buffer<std::uint8_t> buffer(ctx, bytes, what);
+  } catch (const OpenClError& error) {
+    EXPECT_EQ(error.status(), expected_status);
+    return error.what();
+  }
+  ADD_FAILURE() << "buffer '" << what << "' of " << bytes << " bytes was created";
+  return {};
+}
+
 // The budget is checked before clCreateBuffer: a refused buffer is not created or
 // counted, and one that fits exactly is accepted.
 TEST(OpenClRuntime, BuffersBeyondTheMemoryBudgetAreRefusedNamingTheBuffer) {
@@ -102,17 +116,11 @@ TEST(OpenClRuntime, BuffersBeyondTheMemoryBudgetAreRefusedNamingTheBuffer) {
   const size_t before = ctx.buffer_bytes();
   ctx.set_memory_budget(before + 4096);
   Buffer<float> fits(ctx, 1024, "fits");
-  try {
-    Buffer<float> one_more(ctx, 1, "one float too many");
-    ADD_FAILURE() << "a buffer over the budget was created";
-  } catch (const OpenClError& error) {
-    EXPECT_EQ(error.status(), CL_MEM_OBJECT_ALLOCATION_FAILURE);
-    EXPECT_NE(std::string(error.what()).find("creating buffer 'one float too many': its "),
-              std::string::npos)
-        << error.what();
-    EXPECT_NE(std::string(error.what()).find("device memory budget"), std::string::npos)
-        << error.what();
-  }
+  const std::string message =
+      buffer_refusal(ctx, sizeof(float), "one float too many", CL_MEM_OBJECT_ALLOCATION_FAILURE);
+  EXPECT_NE(message.find("creating buffer 'one float too many': its "), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("device memory budget"), std::string::npos) << message;
   EXPECT_EQ(ctx.buffer_bytes(), before + 4096);
 }
 
@@ -122,18 +130,11 @@ TEST(OpenClRuntime, ABufferLargerThanTheDeviceAllowsIsRefusedNamingIt) {
   Context& ctx = context();
   ASSERT_GT(ctx.device().max_buffer_bytes, 0u);
   const size_t before = ctx.buffer_bytes();
-  try {
-    Buffer<std::uint8_t> huge(ctx, ctx.device().max_buffer_bytes + 1, "huge");
-    ADD_FAILURE() << "a buffer over the device's limit was created";
-  } catch (const OpenClError& error) {
-    EXPECT_EQ(error.status(), CL_INVALID_BUFFER_SIZE);
-    EXPECT_NE(std::string(error.what()).find("creating buffer 'huge': it needs "),
-              std::string::npos)
-        << error.what();
-    EXPECT_NE(std::string(error.what()).find("more than the largest buffer the device allows"),
-              std::string::npos)
-        << error.what();
-  }
+  const std::string message =
+      buffer_refusal(ctx, ctx.device().max_buffer_bytes + 1, "huge", CL_INVALID_BUFFER_SIZE);
+  EXPECT_NE(message.find("creating buffer 'huge': it needs "), std::string::npos) << message;
+  EXPECT_NE(message.find("more than the largest buffer the device allows"), std::string::npos)
+      << message;
   EXPECT_EQ(ctx.buffer_bytes(), before);
 }
 
