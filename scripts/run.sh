@@ -10,10 +10,10 @@ scripts/setup.sh
 skimage_data=$(/usr/bin/python3 -c 'import os, skimage.data; print(os.path.dirname(skimage.data.__file__))')
 mkdir -p out
 # The ground truth ships as a NumPy archive; convert it to PFM (inf = unknown).
-/usr/bin/python3 scripts/npz_to_pfm.py "$skimage_data/motorcycle_disp.npz" out/motorcycle_gt.pfm
+/usr/bin/python3 scripts/stereo/npz_to_pfm.py "$skimage_data/motorcycle_disp.npz" out/motorcycle_gt.pfm
 
 # Its calibration, from the documentation skimage ships with it.
-/usr/bin/python3 scripts/skimage_motorcycle_calib.py out/motorcycle_calib.txt
+/usr/bin/python3 scripts/stereo/skimage_motorcycle_calib.py out/motorcycle_calib.txt
 
 # ndisp 70: the disparity range Middlebury gives for this scene at this resolution.
 # Besides the disparity: depth (mm), confidence, and the colored point cloud with normals

@@ -6,8 +6,8 @@
 
 #include <optional>
 
-#include "fallback/stereo_params.h"
-#include "host/baselines/opencv_stereo.h"
+#include "host/stereo/stereo_params.h"
+#include "host/stereo/opencv_stereo.h"
 
 namespace flexsight {
 

@@ -6,9 +6,9 @@
 #include "host/io/input_error.h"
 
 #if defined(FLEXSIGHT_HAVE_OPENCL)
-#include "host/opencl/cl_device.h"
-#include "host/opencl/cl_program.h"
-#include "host/opencl/opencl_matcher.h"
+#include "host/runtime/cl_device.h"
+#include "host/runtime/cl_program.h"
+#include "host/stereo/opencl_matcher.h"
 #endif
 
 namespace flexsight {

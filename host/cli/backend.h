@@ -1,14 +1,14 @@
 #pragma once
 // Which matcher runs a pair, for the stereo and eval commands: the OpenCL path
-// (host/opencl/, when this build has it) or the reference path (run_stereo), chosen by
+// (host/runtime/ and host/stereo/, when this build has it) or the reference path (run_stereo), chosen by
 // --device auto|opencl|reference, --cl-platform and --cl-device.
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "host/opencl/kernel_timing.h"
-#include "host/stereo_pipeline.h"
+#include "host/runtime/kernel_timing.h"
+#include "host/stereo/stereo_pipeline.h"
 
 namespace flexsight {
 

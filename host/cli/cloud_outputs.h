@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "host/geometry/point_cloud.h"
-#include "host/io/ply.h"
+#include "host/geometry/ply.h"
 
 namespace flexsight {
 

@@ -22,13 +22,13 @@
 #include "host/eval/dataset.h"
 #include "host/eval/metrics.h"
 #include "host/eval/report.h"
-#include "host/geometry/confidence_map.h"
+#include "host/stereo/confidence_map.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/io/atomic_file.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/pfm.h"
-#include "host/stereo_pipeline.h"
+#include "host/stereo/stereo_pipeline.h"
 
 namespace flexsight {
 

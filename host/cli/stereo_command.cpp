@@ -18,14 +18,14 @@
 #include "host/eval/colorize.h"
 #include "host/eval/confidence_depth_metrics.h"
 #include "host/eval/metrics.h"
-#include "host/geometry/confidence_map.h"
+#include "host/stereo/confidence_map.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/middlebury_v2.h"
 #include "host/io/pfm.h"
-#include "host/pipeline_rules.h"
-#include "host/stereo_pipeline.h"
+#include "host/stereo/pipeline_rules.h"
+#include "host/stereo/stereo_pipeline.h"
 
 namespace flexsight {
 namespace {
@@ -46,7 +46,7 @@ void print_help() {
                "  --gt-mask MASK.png          non-occluded mask for --gt (255 = non-occluded)\n"
                "  --planes PLANES.pfm         per-pixel planes (a, b, c) as a 3-channel PFM\n"
                "  --conf CONF.pfm             confidence in [0, 1] (left/right agreement around the\n"
-               "                              pixel x match quality, see host/geometry/confidence_map.h)\n"
+               "                              pixel x match quality, see host/stereo/confidence_map.h)\n"
                "  --conf-png CONF.png         the confidence as a picture\n"
                "  --profile                   print the device time per OpenCL kernel\n"
                "  --quiet                     no progress lines\n"

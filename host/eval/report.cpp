@@ -107,7 +107,7 @@ std::string markdown_confidence_and_depth(const EvalReport& report) {
   rule += "---:|---:|";
   std::string text =
       "## confidence and depth\n\n"
-      "Pixels with ground truth whose confidence (host/geometry/confidence_map.h) passes a "
+      "Pixels with ground truth whose confidence (host/stereo/confidence_map.h) passes a "
       "threshold: their share and their bad-2 (all pixels). Sparsification AUC: the bad-2 of "
       "the most confident 5, 10, ..., 100 % of them, averaged (lower is better; optimal: ranked "
       "by the true error). Depth error: our depth against the "

@@ -1,7 +1,7 @@
 #pragma once
 // Stereo image input: PNG/PPM/PGM/JPG, 8- or 16-bit, gray or color (alpha dropped).
 // Everything is normalised to 8-bit RGB because the matcher's support weights are a
-// table indexed by the integer L1 colour difference (see fallback/weight_table.h).
+// table indexed by the integer L1 colour difference (see fallback/stereo/weight_table.h).
 #include <opencv2/core.hpp>
 #include <string>
 

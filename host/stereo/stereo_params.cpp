@@ -1,0 +1,146 @@
+#include "host/stereo/stereo_params.h"
+
+#include <cmath>
+#include <string>
+
+#include "host/io/input_error.h"
+#include "kernels/stereo/pms_math.h"
+
+namespace flexsight {
+namespace {
+
+void require(bool ok, const char* name, const std::string& problem) {
+  if (!ok) throw InputError(std::string("parameter --") + name, problem);
+}
+
+}  // namespace
+
+void StereoParams::check() const {
+  require(ndisp > 0, "ndisp", "must be positive, got " + std::to_string(ndisp));
+  require(window >= 1 && window % 2 == 1 && window <= 101, "window",
+          "must be odd and in 1..101, got " + std::to_string(window));
+  require(window_step >= 1 && window_step <= window, "window-step",
+          "must be in 1..window, got " + std::to_string(window_step));
+  require(window_step_fine >= 1 && window_step_fine <= window, "window-step-fine",
+          "must be in 1..window, got " + std::to_string(window_step_fine));
+  require(std::isfinite(alpha) && alpha >= 0 && alpha <= 1, "alpha", "must be in [0, 1]");
+  require(std::isfinite(tau_color) && tau_color > 0, "tau-color", "must be positive");
+  require(std::isfinite(tau_gradient) && tau_gradient > 0, "tau-gradient", "must be positive");
+  require(std::isfinite(gamma) && gamma > 0, "gamma", "must be positive");
+  require(!std::isnan(gamma_distance) && gamma_distance > 0, "gamma-distance",
+          "must be positive (inf: colour-only weights)");
+  require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
+  require(std::isfinite(census_cap) && census_cap >= 0 && census_cap <= 24, "census-cap",
+          "must be in [0, 24] (24: no cap)");
+  // At most 50 + 10 iterations per level keep the random generator's iteration keys
+  // (iteration_key: 64 per level) distinct.
+  require(iterations >= 1 && iterations <= 50, "iterations", "must be in 1..50");
+  require(iterations_coarsest >= 1 && iterations_coarsest <= 50, "iterations-coarsest",
+          "must be in 1..50");
+  require(window_step_finest >= 0 && window_step_finest <= window, "window-step-finest",
+          "must be in 0..window (0 = window-step-fine), got " +
+              std::to_string(window_step_finest));
+  require(iterations_finest >= 0 && iterations_finest <= 50, "iterations-finest",
+          "must be in 0..50 (0 = iterations-fine), got " + std::to_string(iterations_finest));
+  require(iterations_fine >= 0 && iterations_fine <= 50, "iterations-fine",
+          "must be in 0..50");
+  require(refill_iterations >= 0 && refill_iterations <= 10, "refill-iterations",
+          "must be in 0..10");
+  require(refill_unsure_only == 0 || refill_unsure_only == 1, "refill-unsure-only",
+          "must be 0 or 1");
+  require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
+          "must be positive");
+  require(std::isfinite(fine_search_range) && fine_search_range > 0, "fine-search-range",
+          "must be positive");
+  require(std::isfinite(confident_threshold) && confident_threshold >= 0, "confident-threshold",
+          "must be >= 0 (above 1 disables the confidence rule)");
+  require(std::isfinite(confident_max_range) && confident_max_range >= 0, "confident-max-range",
+          "must be >= 0");
+  require(confident_spatial_candidates >= 0 &&
+              confident_spatial_candidates <= PMS_SPATIAL_CANDIDATES,
+          "confident-spatial-candidates",
+          "must be in 0.." + std::to_string(PMS_SPATIAL_CANDIDATES) + ", got " +
+              std::to_string(confident_spatial_candidates));
+  require(refresh_confidence == 0 || refresh_confidence == 1, "refresh-confidence",
+          "must be 0 or 1");
+  require(std::isfinite(max_normal_delta) && max_normal_delta >= 0 && max_normal_delta <= 2,
+          "max-normal-delta", "must be in [0, 2]");
+  require(coarsest_width >= 8, "coarsest-width", "must be at least 8");
+  require(pyramid_factor == 2, "pyramid-factor", "only 2 is supported (exact plane carrying)");
+  require(fill_coarse == 0 || fill_coarse == 1, "fill-coarse", "must be 0 or 1");
+  require(std::isfinite(lr_tolerance) && lr_tolerance >= 0, "lr-tolerance", "must be >= 0");
+  require(!std::isnan(fill_max_extrapolation) && fill_max_extrapolation >= 0,
+          "fill-max-extrapolation", "must be >= 0 (inf: no limit)");
+  require(median_window >= 1 && median_window % 2 == 1 && median_window <= 101, "median-window",
+          "must be odd and in 1..101");
+  require(!std::isnan(median_background_margin) && median_background_margin >= 0,
+          "median-background-margin", "must be >= 0 (inf: every consistent pixel votes)");
+  require(std::isfinite(median_gamma) && median_gamma > 0, "median-gamma", "must be positive");
+  require(speckle_size >= 0, "speckle-size", "must be >= 0 (0 = off)");
+  require(raw_speckle_size >= 0, "raw-speckle-size", "must be >= 0 (0 = off)");
+  require(std::isfinite(speckle_range) && speckle_range >= 0, "speckle-range",
+          "must be a finite number >= 0");
+  require(final_median_window >= 1 && final_median_window % 2 == 1 && final_median_window <= 15,
+          "final-median-window", "must be odd and in 1..15 (1 = off)");
+  require(std::isfinite(final_median_gamma) && final_median_gamma > 0, "final-median-gamma",
+          "must be positive");
+  require(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024 (0 = all cores)");
+}
+
+const char* method_name(StereoMethod method) {
+  return method == StereoMethod::PPMS ? "ppms" : "pms";
+}
+
+namespace {
+
+// The speed knobs of a preset.
+struct SpeedKnobs {
+  int window_step;
+  int window_step_fine;
+  int window_step_finest;
+  int iterations_fine;
+  int iterations_finest;
+};
+
+SpeedKnobs accurate_preset() {
+  const StereoParams defaults;
+  return {defaults.window_step, defaults.window_step_fine, defaults.window_step_finest,
+          defaults.iterations_fine, defaults.iterations_finest};
+}
+
+// Window steps 3 / 5 / 6 (coarsest level / levels between / finest: 144, 49 and 25 of
+// the 35x35 window's pixels instead of 324, 81 and 81) and one iteration on every finer
+// level (the finest level's refill iteration stays). 15 MiddEval3 Q scenes, OpenCL on
+// PoCL, 2 cores, 2026-12-02: bad-2 all 11.55 / 11.65 / 11.52 % with seeds 1 / 2 / 3
+// (defaults: 10.93 % with seed 1) in 1.87 s per scene (defaults 6.08 s, same hour);
+// Motorcycle 7.13 % (6.26). With the 4-px fill limit (fill_max_extrapolation, later
+// that day) 11.45 % (seed 1) in 1.81 s, Motorcycle 7.12 %; the sweep below ran with 2 px. Tried on the way (seed 1): finest step 8 (also 25 samples,
+// wider apart) 11.68 %; step 6 below the coarsest level too 11.70 %; two iterations on
+// the coarsest level instead of three 11.79 %; 4 spatial candidates for confident pixels
+// 12.33 %; --min-search-range 0.5 11.53 % at the same speed; steps 3 / 4 / 5 with two
+// iterations between and one on the finest level 11.39 % in 2.78 s, finest step 5 with
+// one iteration everywhere below the coarsest level and step 2 on it 11.23 % in 3.28 s.
+SpeedKnobs fast_preset() { return {3, 5, 6, 1, 1}; }
+
+}  // namespace
+
+bool apply_stereo_preset(const std::string& name, StereoParams& params) {
+  SpeedKnobs knobs;
+  if (name == "accurate") {
+    knobs = accurate_preset();
+  } else if (name == "fast") {
+    knobs = fast_preset();
+  } else {
+    return false;
+  }
+  params.window_step = knobs.window_step;
+  params.window_step_fine = knobs.window_step_fine;
+  params.window_step_finest = knobs.window_step_finest;
+  params.iterations_fine = knobs.iterations_fine;
+  params.iterations_finest = knobs.iterations_finest;
+  return true;
+}
+
+const char* stereo_preset_names() { return "accurate, fast"; }
+
+}  // namespace flexsight

@@ -1,0 +1,162 @@
+// Camera models: every calibration format on real files (copies of ../shared/datasets
+// files in tests/data/calib) and on OpenCV's own stereoRectify output, checked against
+// the formats' own triangulation formulas and cv::reprojectImageTo3D.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/calib3d.hpp>
+
+#include "host/geometry/stereo_camera.h"
+#include "host/io/input_error.h"
+#include "tests/common/test_support.h"
+
+using namespace flexsight;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string calib_file(const std::string& name) {
+  return std::string(FLEXSIGHT_TEST_DATA_DIR) + "/calib/" + name;
+}
+
+// The message of the InputError that `read` throws, or "" when it does not throw.
+template <typename Read>
+std::string error_of(Read read) {
+  try {
+    read();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+class OpenCvCalibration : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing_support::fresh_temp_dir(
+        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    // A real rig: slightly rotated and offset cameras, rectified by OpenCV.
+    const cv::Matx33d K(700, 0, 320, 0, 705, 240, 0, 0, 1);
+    cv::Mat R;
+    cv::Rodrigues(cv::Vec3d(0.002, 0.01, -0.003), R);
+    const cv::Vec3d T(-0.12, 0.001, 0.002);
+    cv::Mat R1, R2, P1, P2;
+    cv::stereoRectify(K, cv::noArray(), K, cv::noArray(), cv::Size(640, 480), R, T, R1, R2, P1,
+                      P2, Q_, cv::CALIB_ZERO_DISPARITY, 0);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  std::string write(const std::string& name, const cv::Mat& Q, const char* unit) {
+    const std::string path = (dir_ / name).string();
+    cv::FileStorage storage(path, cv::FileStorage::WRITE);
+    storage << "image_size" << std::vector<int>{640, 480};
+    if (!Q.empty()) storage << "Q" << Q;
+    if (unit) storage << "unit" << unit;
+    return path;
+  }
+  fs::path dir_;
+  cv::Mat Q_;
+};
+
+}  // namespace
+
+TEST(MiddleburyCamera, DepthIsBaselineTimesFocalOverDisparityPlusDoffs) {
+  const std::string path = calib_file("middeval3_motorcycle_Q.txt");
+  const StereoCamera camera = read_stereo_camera(path);
+  EXPECT_EQ(camera.unit, "mm");
+  EXPECT_EQ(camera.width, 741);
+  for (double d : {7.0, 30.25, 65.0}) {
+    EXPECT_NEAR(camera.depth(d), 193.001 * 999.421 / (d + 32.778), 1e-9);
+    Eigen::Vector3d p;
+    ASSERT_TRUE(camera.point(100, 400, d, p));
+    const double z = 193.001 * 999.421 / (d + 32.778);
+    EXPECT_NEAR(p.x(), (100 - 294.182) * z / 999.421, 1e-9);
+    EXPECT_NEAR(p.y(), (400 - 252.932) * z / 999.421, 1e-9);
+    EXPECT_NEAR(p.z(), z, 1e-9);
+  }
+  // At or beyond infinity there is no point.
+  Eigen::Vector3d p;
+  EXPECT_FALSE(camera.point(10, 10, -33.0, p));
+  EXPECT_TRUE(std::isnan(camera.depth(-40)));
+}
+
+TEST(MiddleburyCamera, ResizedRigGivesTheSamePoints) {
+  const StereoCamera full = read_stereo_camera(calib_file("middeval3_motorcycle_Q.txt"));
+  const StereoCamera half = full.resized_to(370, 248);  // rounding drops half a pixel
+  Eigen::Vector3d a, b;
+  ASSERT_TRUE(full.point(300, 200, 40, a));
+  ASSERT_TRUE(half.point(300 * 370.0 / 741, 200 * 370.0 / 741, 40 * 370.0 / 741, b));
+  EXPECT_LT((a - b).norm(), 1e-9 * a.norm());
+  const std::string error = error_of([&] { full.resized_to(741, 300); });
+  EXPECT_NE(error.find("middeval3_motorcycle_Q.txt"), std::string::npos) << error;
+  EXPECT_NE(error.find("not a uniform resize"), std::string::npos) << error;
+}
+
+TEST(MiddleburyCamera, FixtureCalibration) {
+  const StereoCamera camera = read_stereo_camera(testing_support::fixture_dir() + "/calib.txt");
+  EXPECT_NEAR(camera.depth(10), 80.0 * 750 / (10 + 26), 1e-9);
+}
+
+TEST(KittiCamera, DepthFromTheProjectionMatrices) {
+  const StereoCamera camera = read_stereo_camera(calib_file("kitti2012_000070.txt"));
+  EXPECT_EQ(camera.unit, "m");
+  const double f = 718.856, baseline = 386.1448 / 718.856;
+  EXPECT_NEAR(camera.depth(50), f * baseline / 50, 1e-9);
+  Eigen::Vector3d p;
+  ASSERT_TRUE(camera.point(607.1928 + 100, 185.2157, 50, p));
+  EXPECT_NEAR(p.x(), 100 * (f * baseline / 50) / f, 1e-9);
+  EXPECT_NEAR(p.y(), 0, 1e-9);
+}
+
+TEST_F(OpenCvCalibration, PointsEqualReprojectImageTo3D) {
+  for (const char* name : {"stereo.yml", "stereo.xml"}) {
+    const StereoCamera camera = read_stereo_camera(write(name, Q_, "m"));
+    EXPECT_EQ(camera.unit, "m");
+    EXPECT_EQ(camera.width, 640);
+    cv::Mat disparity(48, 64, CV_32FC1);
+    cv::randu(disparity, 5.0f, 80.0f);
+    cv::Mat expected;
+    cv::reprojectImageTo3D(disparity, expected, Q_, false, CV_32F);
+    for (int y = 0; y < disparity.rows; ++y) {
+      for (int x = 0; x < disparity.cols; ++x) {
+        Eigen::Vector3d p;
+        ASSERT_TRUE(camera.point(x, y, disparity.at<float>(y, x), p));
+        const cv::Vec3f e = expected.at<cv::Vec3f>(y, x);
+        ASSERT_NEAR(p.x(), e[0], 1e-5 * std::abs(e[2]));
+        ASSERT_NEAR(p.y(), e[1], 1e-5 * std::abs(e[2]));
+        ASSERT_NEAR(p.z(), e[2], 1e-5 * std::abs(e[2]));
+      }
+    }
+  }
+}
+
+TEST_F(OpenCvCalibration, UnitDefaultsToMillimetres) {
+  EXPECT_EQ(read_stereo_camera(write("no_unit.yml", Q_, nullptr)).unit, "mm");
+}
+
+TEST_F(OpenCvCalibration, RejectsMalformedFiles) {
+  const std::string no_q = write("no_q.yml", cv::Mat(), "m");
+  EXPECT_NE(error_of([&] { read_stereo_camera(no_q); }).find("has no Q matrix"), std::string::npos);
+  const std::string small = write("small.yml", cv::Mat::eye(3, 3, CV_64F), "m");
+  EXPECT_NE(error_of([&] { read_stereo_camera(small); }).find("expected 4x4"), std::string::npos);
+  cv::Mat swapped = Q_.clone();
+  swapped.at<double>(3, 2) = -swapped.at<double>(3, 2);
+  const std::string swapped_path = write("swapped.yml", swapped, "m");
+  EXPECT_NE(error_of([&] { read_stereo_camera(swapped_path); }).find("swapped"),
+            std::string::npos);
+  const std::string inch = write("inch.yml", Q_, "inch");
+  EXPECT_NE(error_of([&] { read_stereo_camera(inch); }).find("unknown length unit 'inch'"),
+            std::string::npos);
+  const std::string garbage = (dir_ / "garbage.txt").string();
+  std::ofstream(garbage) << "no calibration in here\n";
+  const std::string error = error_of([&] { read_stereo_camera(garbage); });
+  EXPECT_NE(error.find(garbage), std::string::npos) << error;
+  EXPECT_NE(error.find("not a calibration file"), std::string::npos) << error;
+  const std::string missing = (dir_ / "missing.yml").string();
+  EXPECT_NE(error_of([&] { read_stereo_camera(missing); }).find(missing), std::string::npos);
+  const std::string broken_yaml = (dir_ / "broken.yml").string();
+  std::ofstream(broken_yaml) << "%YAML:1.0\nQ: !!opencv-matrix\n   rows: 4\n   cols: [\n";
+  EXPECT_NE(error_of([&] { read_stereo_camera(broken_yaml); }).find(broken_yaml),
+            std::string::npos);
+}
