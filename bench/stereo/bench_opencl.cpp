@@ -307,7 +307,7 @@ opencl::OpenClMatcher& matcher() {
   static opencl::OpenClMatcher shared([] {
     opencl::OpenClOptions options;
     const char* device = std::getenv("FLEXSIGHT_OPENCL_DEVICE");
-    options.device = device ? device : "";
+    options.cl_device = device ? device : "";
     options.profile = true;
     return options;
   }());

@@ -115,15 +115,15 @@ int run(int argc, char** argv) {
     } else if (arg == "--reference" && has_value) {
       reference = std::string(argv[++i]) != "0";
     } else if (arg == "--cl-platform" && has_value) {
-      options.platform = argv[++i];
+      options.cl_platform = argv[++i];
     } else if (arg == "--cl-device" && has_value) {
-      options.device = argv[++i];
+      options.cl_device = argv[++i];
     } else if (arg == "--profile") {
       options.profile = true;
     } else if (arg == "--cl-build-options" && has_value) {
       // e.g. -cl-nv-maxrregcount=64 on NVIDIA; options that change the bytes are refused
-      options.build_options = argv[++i];
-      const std::string inexact = flexsight::opencl::inexact_build_option(options.build_options);
+      options.cl_build_options = argv[++i];
+      const std::string inexact = flexsight::opencl::inexact_build_option(options.cl_build_options);
       if (!inexact.empty()) throw InputError("--cl-build-options", inexact);
     } else if (arg == "--preset" && has_value) {
       const std::string name = argv[++i];

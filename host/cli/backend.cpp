@@ -12,22 +12,6 @@
 #endif
 
 namespace flexsight {
-namespace {
-
-const char* const kReferencePath = "reference path";
-
-// One line: the first of `why` (a build log may follow on further lines, which
-// --device opencl shows in full).
-void notice_fallback(const std::string& why) {
-  std::string line = why.substr(0, why.find('\n'));
-  if (line.size() < why.size()) {
-    while (!line.empty() && (line.back() == ':' || line.back() == ' ')) line.pop_back();
-    line += " (in full with --device opencl)";
-  }
-  std::cerr << "note: --device auto: " << line << "; running the reference path\n";
-}
-
-}  // namespace
 
 BackendOptions take_backend_options(std::vector<std::string>& args) {
   BackendOptions options;
@@ -113,47 +97,25 @@ std::string backend_options_help() {
 #if defined(FLEXSIGHT_HAVE_OPENCL)
 
 struct StereoBackend::Impl {
-  BackendOptions options;
+  std::unique_ptr<ComputeBackend> owned;  // when constructed from options
+  ComputeBackend* compute = nullptr;
   std::unique_ptr<opencl::OpenClMatcher> matcher;  // null: the reference path
   std::vector<opencl::KernelTiming> kernel_timings;
   size_t peak_device_bytes = 0;
 };
 
-StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_unique<Impl>()) {
-  impl_->options = options;
-  if (options.kind == BackendKind::Reference) return;
-  const bool forced = options.kind == BackendKind::OpenCl;
-  std::string why;
-  if (!opencl::opencl_available(&why)) {
-    if (forced) throw InputError("--device opencl", "selecting the OpenCL device: " + why);
-    notice_fallback("no usable OpenCL device (" + why + ")");
-    return;
-  }
-  try {
-    opencl::OpenClOptions cl;
-    cl.platform = options.cl_platform;
-    cl.device = options.cl_device;
-    cl.profile = options.profile;
-    cl.memory_budget = options.cl_max_memory;
-    cl.build_options = options.cl_build_options;
-    impl_->matcher = std::make_unique<opencl::OpenClMatcher>(cl);
-  } catch (const opencl::OpenClError& error) {
-    // A selector that matches nothing is a typo, not a missing device: an error naming
-    // the option, under auto too, so that it never changes the backend silently.
-    if (error.status() == CL_INVALID_PLATFORM && !options.cl_platform.empty()) {
-      throw InputError("option --cl-platform", error.what());
-    }
-    if (error.status() == CL_DEVICE_NOT_FOUND && !options.cl_device.empty()) {
-      throw InputError("option --cl-device", error.what());
-    }
-    if (forced) throw InputError("--device opencl", error.what());
-    notice_fallback(error.what());
-  }
+StereoBackend::StereoBackend(ComputeBackend& compute) : impl_(std::make_unique<Impl>()) {
+  impl_->compute = &compute;
+  const bool profile = compute.options().profile;
+  impl_->matcher = compute.build_part<opencl::OpenClMatcher>(
+      [profile](const std::shared_ptr<opencl::Context>& context) {
+        return std::make_unique<opencl::OpenClMatcher>(context, profile);
+      });
 }
 
 std::string StereoBackend::planned() const {
   return impl_->matcher ? "OpenCL path on " + impl_->matcher->device_description()
-                        : kReferencePath;
+                        : "reference path";
 }
 
 StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
@@ -161,22 +123,20 @@ StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_r
                                 std::string* used) {
   impl_->kernel_timings.clear();
   impl_->peak_device_bytes = 0;
-  if (impl_->matcher) {
-    try {
-      StereoResult result = impl_->matcher->run(left_rgb8, right_rgb8, params, progress);
-      if (impl_->options.profile) impl_->kernel_timings = impl_->matcher->kernel_timings();
-      impl_->peak_device_bytes = impl_->matcher->peak_buffer_bytes();
-      if (used) *used = planned();
-      return result;
-    } catch (const opencl::OpenClError& error) {
-      if (impl_->options.kind == BackendKind::OpenCl) {
-        throw InputError("--device opencl", error.what());
-      }
-      notice_fallback(error.what());
-    }
-  }
-  if (used) *used = kReferencePath;
-  return run_stereo(left_rgb8, right_rgb8, params, progress);
+  bool on_device = false;
+  StereoResult result = impl_->compute->run(
+      impl_->matcher != nullptr,
+      [&] {
+        StereoResult device_result = impl_->matcher->run(left_rgb8, right_rgb8, params, progress);
+        if (impl_->compute->options().profile) {
+          impl_->kernel_timings = impl_->matcher->kernel_timings();
+        }
+        impl_->peak_device_bytes = impl_->matcher->peak_buffer_bytes();
+        return device_result;
+      },
+      [&] { return run_stereo(left_rgb8, right_rgb8, params, progress); }, &on_device);
+  if (used) *used = on_device ? planned() : "reference path";
+  return result;
 }
 
 std::vector<opencl::KernelTiming> StereoBackend::kernel_timings() const {
@@ -224,19 +184,18 @@ const char* const kNoOpenCl =
     "this build has no OpenCL path (no OpenCL SDK was found when it was configured)";
 }  // namespace
 
-struct StereoBackend::Impl {};
+struct StereoBackend::Impl {
+  std::unique_ptr<ComputeBackend> owned;
+};
 
-StereoBackend::StereoBackend(const BackendOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (options.kind == BackendKind::OpenCl) throw InputError("--device opencl", kNoOpenCl);
-  if (options.kind == BackendKind::Auto) notice_fallback(kNoOpenCl);
-}
+StereoBackend::StereoBackend(ComputeBackend&) : impl_(std::make_unique<Impl>()) {}
 
-std::string StereoBackend::planned() const { return kReferencePath; }
+std::string StereoBackend::planned() const { return "reference path"; }
 
 StereoResult StereoBackend::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                                 const StereoParams& params, const ProgressCallback& progress,
                                 std::string* used) {
-  if (used) *used = kReferencePath;
+  if (used) *used = "reference path";
   return run_stereo(left_rgb8, right_rgb8, params, progress);
 }
 
@@ -250,6 +209,13 @@ std::vector<OpenClDeviceRow> list_opencl_device_rows(std::string* why) {
 }
 
 #endif
+
+StereoBackend::StereoBackend(const BackendOptions& options)
+    : StereoBackend(std::make_unique<ComputeBackend>(options)) {}
+
+StereoBackend::StereoBackend(std::unique_ptr<ComputeBackend> owned) : StereoBackend(*owned) {
+  impl_->owned = std::move(owned);
+}
 
 StereoBackend::~StereoBackend() = default;
 

@@ -1,41 +1,18 @@
 #pragma once
-// Which matcher runs a pair, for the stereo and eval commands: the OpenCL path
-// (host/runtime/ and host/stereo/, when this build has it) or the reference path (run_stereo), chosen by
-// --device auto|opencl|reference, --cl-platform and --cl-device.
+// The backend options of the command line (--device, --cl-*), and the stereo module on
+// the chosen backend for the stereo and eval commands: the OpenCL matcher
+// (host/stereo/opencl_matcher.h, when this build has OpenCL) or run_stereo.
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "host/runtime/compute_backend.h"
+#include "host/runtime/device_options.h"
 #include "host/runtime/kernel_timing.h"
 #include "host/stereo/stereo_pipeline.h"
 
 namespace flexsight {
-
-enum class BackendKind {
-  Auto,       // OpenCL when a usable device exists, else the reference path (with a notice)
-  OpenCl,     // OpenCL or an error
-  Reference,  // the scalar reference path
-};
-
-struct BackendOptions {
-  BackendKind kind = BackendKind::Auto;
-  // --cl-platform: a platform's number or part of its name; "" for every platform.
-  std::string cl_platform;
-  // --cl-device: a device's number (within --cl-platform when given) or part of its
-  // name; "" for the first GPU that rounds divide and sqrt correctly, else the first
-  // such device.
-  std::string cl_device;
-  // --cl-max-memory: most bytes of device buffers a run may hold at once; 0 for the
-  // device's memory. A run that needs more fails (opencl) or falls back (auto).
-  size_t cl_max_memory = 0;
-  // --cl-build-options: extra OpenCL C build options for every kernel, for tuning on a
-  // device (e.g. "-cl-nv-maxrregcount=64"); options that would change the results are
-  // refused.
-  std::string cl_build_options;
-  // Record the device time of every kernel launch (see StereoBackend::kernel_timings).
-  bool profile = false;
-};
 
 // Removes --device, --cl-platform, --cl-device, --cl-max-memory and --cl-build-options
 // with their values from `args`. Throws InputError naming the option for an unknown
@@ -50,14 +27,16 @@ std::optional<size_t> parse_byte_size(const std::string& text);
 // The --help lines of those options.
 std::string backend_options_help();
 
-// The chosen matcher, kept across runs (building the OpenCL kernels takes seconds).
-// Notices (auto falling back to the reference path, and why) go to stderr, one line.
+// The stereo module on the process's backend (host/runtime/compute_backend.h): the
+// OpenCL matcher built on the shared context when there is one, the reference path
+// otherwise, kept across runs (building the kernels takes seconds).
 class StereoBackend {
  public:
-  // Picks the device and builds the kernels. Under opencl a failure throws InputError
-  // ("--device opencl: <step>: <reason>"), under auto it falls back to the reference
-  // path with a notice; a --cl-platform or --cl-device that matches nothing is an
-  // InputError naming that option, under auto too.
+  // Builds the matcher on `compute`'s context, which must outlive this. Under opencl a
+  // kernel that does not build is an InputError ("--device opencl: building the kernels
+  // on ...: <log>"); under auto the reference path runs, with a notice.
+  explicit StereoBackend(ComputeBackend& compute);
+  // The same with a backend of its own, chosen by `options` (see ComputeBackend).
   explicit StereoBackend(const BackendOptions& options);
   ~StereoBackend();
   StereoBackend(const StereoBackend&) = delete;
@@ -84,6 +63,7 @@ class StereoBackend {
   size_t peak_device_bytes() const;
 
  private:
+  explicit StereoBackend(std::unique_ptr<ComputeBackend> owned);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -5,9 +5,11 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "host/io/input_error.h"
 #include "host/runtime/cl_program.h"
+#include "host/runtime/shared_context.h"
 #include "host/stereo/opencl_stage_set.h"
 #include "host/stereo/patchmatch_schedule.h"
 
@@ -32,53 +34,25 @@ int cost_lanes_from_environment() {
 }  // namespace
 
 struct OpenClMatcher::State {
-  Context context;
+  std::shared_ptr<Context> context;
   KernelProfiler profiler;
   OpenClStageSet stages;
-  State(const DeviceInfo& device, bool profile, const std::string& build_options)
-      : context(device, build_options),
-        stages(context, profile ? &profiler : nullptr, cost_lanes_from_environment()) {}
+  State(std::shared_ptr<Context> shared, bool profile)
+      : context(std::move(shared)),
+        stages(*context, profile ? &profiler : nullptr, cost_lanes_from_environment()) {}
 };
 
-bool opencl_available(std::string* why) {
+OpenClMatcher::OpenClMatcher(std::shared_ptr<Context> context, bool profile) {
+  const std::string device = context->device().description();
   try {
-    if (!enumerate_devices().empty()) return true;
-    if (why) *why = "no OpenCL platform or device is installed";
+    state_ = std::make_unique<State>(std::move(context), profile);
   } catch (const OpenClError& error) {
-    if (why) *why = error.what();
+    throw OpenClError("building the kernels on " + device + ": " + error.what(), error.status());
   }
-  return false;
 }
 
-std::vector<std::string> list_opencl_devices() {
-  std::vector<std::string> lines;
-  for (const DeviceInfo& device : enumerate_devices()) lines.push_back(device.description());
-  return lines;
-}
-
-OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
-  const std::string inexact = inexact_build_option(options.build_options);
-  if (!inexact.empty()) throw std::invalid_argument("OpenCL build options: " + inexact);
-  DeviceInfo device;
-  try {
-    device = select_device(options.platform, options.device);
-  } catch (const OpenClError& error) {
-    throw OpenClError(std::string("selecting the OpenCL device: ") + error.what(), error.status());
-  }
-  if (!device.correctly_rounded_divide_sqrt) {
-    throw OpenClError("selecting the OpenCL device: " + device.description() +
-                          " has no correctly rounded single-precision divide and sqrt, so "
-                          "its results could not match the reference",
-                      CL_INVALID_DEVICE);
-  }
-  try {
-    state_ = std::make_unique<State>(device, options.profile, options.build_options);
-    state_->context.set_memory_budget(options.memory_budget);
-  } catch (const OpenClError& error) {
-    throw OpenClError("building the kernels on " + device.description() + ": " + error.what(),
-                      error.status());
-  }
-}
+OpenClMatcher::OpenClMatcher(const OpenClOptions& options)
+    : OpenClMatcher(open_shared_context(options), options.profile) {}
 
 OpenClMatcher::~OpenClMatcher() = default;
 
@@ -86,16 +60,16 @@ std::vector<KernelTiming> OpenClMatcher::kernel_timings() const {
   return state_->profiler.summary();
 }
 
-size_t OpenClMatcher::peak_buffer_bytes() const { return state_->context.peak_buffer_bytes(); }
+size_t OpenClMatcher::peak_buffer_bytes() const { return state_->context->peak_buffer_bytes(); }
 
 std::string OpenClMatcher::device_description() const {
-  return state_->context.device().description();
+  return state_->context->device().description();
 }
 
 StereoResult OpenClMatcher::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                                 const StereoParams& params, const ProgressCallback& progress) {
   std::string stage = "start";
-  state_->context.reset_peak();
+  state_->context->reset_peak();
   try {
     return run_stages(left_rgb8, right_rgb8, params, progress, stage);
   } catch (const OpenClError& error) {

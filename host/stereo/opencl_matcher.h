@@ -1,49 +1,32 @@
 #pragma once
-// The OpenCL path of the matcher: the reference scheduler's stage list
-// (host/stereo/stereo_pipeline.cpp) run with the kernels of kernels/, giving the same
-// StereoResult byte for byte on a device with IEEE single precision and correctly
-// rounded division and square root.
+// The OpenCL path of the matcher: the one schedule (patchmatch_schedule.h) over the
+// kernels of kernels/stereo/, giving run_stereo's StereoResult byte for byte on a device
+// with IEEE single precision and correctly rounded division and square root.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "host/runtime/cl_context.h"
+#include "host/runtime/device_options.h"
 #include "host/runtime/kernel_timing.h"
 #include "host/stereo/stereo_pipeline.h"
 
 namespace flexsight::opencl {
 
-struct OpenClOptions {
-  // Device selector: empty for the first usable GPU (else the first usable device), a
-  // number for an index of list_opencl_devices() (of the platform's devices when
-  // `platform` is set), otherwise part of "<platform> <device>" names.
-  std::string device;
-  // Record every kernel launch's device time (see OpenClMatcher::kernel_timings).
-  bool profile = false;
-  // Platform selector: empty for every platform, a number for the platform's position,
-  // otherwise part of its name.
-  std::string platform;
-  // Most bytes of device buffers a run may hold at once (0: the device's memory); a run
-  // that needs more fails, naming the step and the buffer (see Context::check_allocation).
-  size_t memory_budget = 0;
-  // Extra OpenCL C build options for every kernel (e.g. -cl-nv-maxrregcount=64 when
-  // tuning on a device); the caller refuses inexact ones (inexact_build_option).
-  std::string build_options;
-};
+// Device choice and set-up (host/runtime/device_options.h); the matcher reads every
+// field but `kind`.
+using OpenClOptions = BackendOptions;
 
-// True when at least one OpenCL device exists; otherwise false, with the reason in
-// *why (when given).
-bool opencl_available(std::string* why);
-
-// "#0 pthread-skylake-avx512-AMD EPYC (Portable Computing Language, CPU, OpenCL 3.0 ...)"
-// for every device, in selector index order. Empty when there is no platform.
-std::vector<std::string> list_opencl_devices();
-
-// Holds the device and its built programs across runs (building costs seconds).
+// The stereo kernels built on a device context, kept across runs (building costs
+// seconds).
 class OpenClMatcher {
  public:
-  // Throws OpenClError when no device matches or the kernels do not build; the message
-  // starts with the step ("selecting the OpenCL device: ...", "building the kernels on
-  // #0 ...: ...").
+  // Builds the kernels on `context`, which other modules of the process may share
+  // (host/runtime/shared_context.h). Throws OpenClError "building the kernels on #0
+  // ...: <log>" when they do not build. `profile`: record every kernel launch's time.
+  explicit OpenClMatcher(std::shared_ptr<Context> context, bool profile = false);
+  // Opens a context of its own first (open_shared_context: "selecting the OpenCL
+  // device: ..." when none matches).
   explicit OpenClMatcher(const OpenClOptions& options = {});
   ~OpenClMatcher();
   OpenClMatcher(const OpenClMatcher&) = delete;
@@ -59,10 +42,11 @@ class OpenClMatcher {
   // Per-kernel device times of the last run (empty unless options.profile).
   std::vector<KernelTiming> kernel_timings() const;
 
-  // Device memory the last run() held at most in its buffers, in bytes.
+  // Device memory the context's buffers held at most during the last run(), in bytes
+  // (a shared context counts the other modules' buffers alive meanwhile too).
   size_t peak_buffer_bytes() const;
 
-  // The chosen device, as in list_opencl_devices().
+  // The device, as `flexsight devices` lists it.
   std::string device_description() const;
 
  private:

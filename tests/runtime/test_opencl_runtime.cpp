@@ -2,7 +2,7 @@
 // buffers, argument and work-size checks.
 #include <gtest/gtest.h>
 
-#include "host/stereo/opencl_matcher.h"
+#include "host/runtime/shared_context.h"
 #include "tests/stereo/opencl/opencl_test_support.h"
 
 namespace flexsight::opencl::test {
@@ -20,7 +20,7 @@ TEST(OpenClRuntime, APlatformWithADeviceIsInstalled) {
   std::string why;
   ASSERT_TRUE(opencl_available(&why))
       << "no OpenCL device: " << why << " (install PoCL: apt-get install pocl-opencl-icd)";
-  EXPECT_FALSE(list_opencl_devices().empty());
+  EXPECT_FALSE(enumerate_devices().empty());
 }
 
 TEST(OpenClRuntime, TheTestDeviceRoundsDivisionAndSqrtCorrectly) {

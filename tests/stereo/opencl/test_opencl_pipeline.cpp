@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <memory>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -10,6 +12,7 @@
 
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/runtime/shared_context.h"
 #include "host/stereo/opencl_matcher.h"
 #include "tests/stereo/opencl/opencl_test_support.h"
 
@@ -99,7 +102,7 @@ OpenClMatcher& matcher() {
   static OpenClMatcher shared([] {
     OpenClOptions options;
     const char* device = std::getenv("FLEXSIGHT_OPENCL_DEVICE");
-    options.device = device ? device : "";
+    options.cl_device = device ? device : "";
     options.profile = true;
     return options;
   }());
@@ -176,6 +179,33 @@ TEST(PipelinePresets, FastPresetMatchesTheReferenceByteForByte) {
   const StereoResult expected = run_stereo(crop.left, crop.right, params);
   const StereoResult actual = matcher().run(crop.left, crop.right, params);
   expect_same_outputs(expected, actual);
+}
+
+// The camera runs the matcher and the detector's post-processing on one device
+// context (host/runtime/shared_context.h): another module's program built into the
+// context first, the matcher built on the same context adds its programs beside it,
+// gives the reference's bytes, and its buffers are counted on that context.
+TEST(SharedContext, AMatcherOnAContextAnotherModuleUsesGivesTheReferenceBytes) {
+  BackendOptions options;
+  const char* device = std::getenv("FLEXSIGHT_OPENCL_DEVICE");
+  options.cl_device = device ? device : "";
+  const std::shared_ptr<Context> shared = open_shared_context(options);
+  const KernelSource other_module = {
+      "other_module.cl", 0x5eed,
+      "__kernel void other(__global float* out) { out[get_global_id(0)] = 1.0f; }"};
+  shared->program(other_module);
+  ASSERT_EQ(shared->programs().size(), 1u);
+
+  OpenClMatcher on_shared(shared);
+  EXPECT_GT(shared->programs().size(), 1u) << "the matcher's programs join the context's";
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
+  StereoParams params;
+  params.ndisp = 32;
+  params.coarsest_width = 40;
+  const StereoResult expected = run_stereo(crop.left, crop.right, params);
+  expect_same_outputs(expected, on_shared.run(crop.left, crop.right, params));
+  EXPECT_GT(shared->peak_buffer_bytes(), 0u);
+  EXPECT_EQ(on_shared.peak_buffer_bytes(), shared->peak_buffer_bytes());
 }
 
 TEST(PipelineInputs, InvalidInputsThrowAsInTheReference) {
