@@ -16,11 +16,10 @@
 // gets wrong; a pixel that agrees with the other view but sits among pixels that do not
 // is less sure than one in a consistent area. Ranked by C, the most confident k/20 of
 // the pixels of the 15 MiddEval3 training scenes (quarter resolution, defaults, seed 1)
-// have an average bad-2 of 2.85 % over k = 1..20 (sparsification AUC; 5.11 % with C_lr
-// alone, 4.99 % with C_lr * C_match, the map before; the 5x5 to 11x11 means gave 2.77 to
-// 2.81 % without the gate), and C >= 0.75 keeps 60 % of the pixels at 1.1 % bad-2 where
-// C_lr * C_match kept 60 % at 4.1 %. The gate keeps what the threshold 1/2 meant: pixels
-// that fail the check (C_lr <= 1/2 at the default 1-px tolerance) stay at or below it.
+// have an average bad-2 of 2.85 % over k = 1..20 (sparsification AUC) against 4.99 %
+// without the neighbourhood (C_lr * C_match). The gate keeps what the threshold 1/2
+// means: pixels that fail the check (C_lr <= 1/2 at the default 1-px tolerance) stay at
+// or below it.
 //
 // Why the spread of C_match: without the census term the truncations saturate for most
 // window pixels even when the plane is right (tau_grad = 2 is small next to image

@@ -378,7 +378,7 @@ void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width,
   segment_merge_.set_args(disparity, width, height, max_step, labels, changed);
   segment_flatten_.set_args(width, height, labels);
   // Every round that reports a change links at least one root under another, so this
-  // ends (on PoCL, Motorcycle's mask after the final median took 2 rounds; a GPU that
+  // ends (on PoCL, Motorcycle's mask after the final median takes 2 rounds; a GPU that
   // runs the work items in another order may need more).
   for (;;) {
     changed.fill(0);

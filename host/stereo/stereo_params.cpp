@@ -110,16 +110,11 @@ SpeedKnobs accurate_preset() {
 
 // Window steps 3 / 5 / 6 (coarsest level / levels between / finest: 144, 49 and 25 of
 // the 35x35 window's pixels instead of 324, 81 and 81) and one iteration on every finer
-// level (the finest level's refill iteration stays). 15 MiddEval3 Q scenes, OpenCL on
-// PoCL, 2 cores, 2026-12-02: bad-2 all 11.55 / 11.65 / 11.52 % with seeds 1 / 2 / 3
-// (defaults: 10.93 % with seed 1) in 1.87 s per scene (defaults 6.08 s, same hour);
-// Motorcycle 7.13 % (6.26). With the 4-px fill limit (fill_max_extrapolation, later
-// that day) 11.45 % (seed 1) in 1.81 s, Motorcycle 7.12 %; the sweep below ran with 2 px. Tried on the way (seed 1): finest step 8 (also 25 samples,
-// wider apart) 11.68 %; step 6 below the coarsest level too 11.70 %; two iterations on
-// the coarsest level instead of three 11.79 %; 4 spatial candidates for confident pixels
-// 12.33 %; --min-search-range 0.5 11.53 % at the same speed; steps 3 / 4 / 5 with two
-// iterations between and one on the finest level 11.39 % in 2.78 s, finest step 5 with
-// one iteration everywhere below the coarsest level and step 2 on it 11.23 % in 3.28 s.
+// level (the finest level's refill iteration stays). The fast mode's targets are at
+// most 2 s per scene on 2 cores with bad-2 below 12 % (15 MiddEval3 Q scenes); of the
+// window-step and iteration combinations tried within 2 s, this is the most accurate:
+// 11.45 % (seed 1) in 1.81 s per scene on PoCL, 2 cores, against the defaults' 10.79 %.
+// The other combinations are in docs/tuning-log.md.
 SpeedKnobs fast_preset() { return {3, 5, 6, 1, 1}; }
 
 }  // namespace

@@ -249,8 +249,8 @@ inline int pms_stage_lanes(int width, int height, int colour, const __global int
 
 /* ------------------------------------------------- the other view's match records
  *
- * The cost interpolates the other view at a data-dependent x0 per lane, which made
- * every window sample 11 gathers (three colours and two gradients at x0 and
+ * The cost interpolates the other view at a data-dependent x0 per lane, which would
+ * take 11 gathers per window sample (three colours and two gradients at x0 and
  * x0 + 1, and a census). pack_match_samples (build_view.cl) stores per pixel one record
  * of PMS_MATCH_RECORD floats with everything a sample needs there, so each lane loads
  * its record with one vector load and a transpose turns the lanes' records into one
@@ -263,7 +263,7 @@ typedef struct {
 #if PMS_LANES == 8
 /* Lane l gets the fields of record x0[l]. Three rounds of two-source shuffles (24 in
  * all, which LLVM lowers to permutes) transpose the 8 lanes x 16 floats. Always
- * inlined: called, its results went through the stack and the first read stalled. */
+ * inlined: as a call, its results go through the stack and the first read stalls. */
 __attribute__((always_inline)) inline void pms_load_match_samples(
     const __global float* match_row, int8 x0, PmsMatchSamples* m) {
   const float16 v0 = vload16(0, match_row + PMS_MATCH_RECORD * x0.s0);

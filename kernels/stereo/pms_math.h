@@ -161,12 +161,9 @@ FS_INLINE int pms_perturb_plane(const float* abc, int x, int y, float max_dispar
  * other colour. Through the neighbours at 1 and 5 px a plane travels at most five pixels
  * per half-step; the far ones let good planes cross a textureless wall or an occluded
  * band in a few half-steps, and offer each pixel planes from other parts of its surface
- * (Pipes, Jadeplant and PianoL gain most). 15 MiddEval3 Q scenes, OpenCL, bad-2 all
- * (window step 4 below the coarsest level): distances 1 and 5 only 12.23 / 12.17 % with
- * seeds 1 / 2 (with step 3: 11.93 / 11.95), these four 11.58 / 11.58 / 11.62 % with
- * seeds 1 / 2 / 3 in 1.4x the time of the former; with step 3 and seed 1, adding 15
- * gave 11.50 %, 25 11.44, 45 11.43, both 15 and 45 11.40, at 1.3-1.5x the time of 1 and
- * 5 alone. */
+ * (Pipes, Jadeplant and PianoL gain most). The far rings take about 0.6 points off
+ * bad-2 on the 15 MiddEval3 Q scenes, in 1.4x the time of 1 and 5 alone (the sweep is
+ * in docs/tuning-log.md). */
 #define PMS_SPATIAL_CANDIDATES 16
 FS_INLINE void pms_spatial_offset(int candidate, int* dx, int* dy) {
   int ring = candidate >> 2;

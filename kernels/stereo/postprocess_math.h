@@ -7,8 +7,8 @@
  * voting only the pixels that passed and lie at most a margin in front of the filled
  * background (the hole filling). Then, with a small window, on
  * every pixel: PatchMatch leaves isolated wrong planes (one unlucky random candidate
- * that won), which a 7x7 median removes; on the 15 MiddEval3 training scenes this took
- * bad-2 (all) from 16.9 % to 15.7 %.
+ * that won), which a 7x7 median removes: it takes about a point off bad-2 (all)
+ * (docs/tuning-log.md).
  */
 #ifndef FLEXSIGHT_POSTPROCESS_MATH_H
 #define FLEXSIGHT_POSTPROCESS_MATH_H

@@ -64,8 +64,8 @@ done > "$out/lanes1_cmp.txt"
 echo "lanes 1 against 8: $compared disparities compared" >> "$out/lanes1_cmp.txt"
 cat "$out/lanes1_cmp.txt"
 # The fast preset (flexsight --preset fast) with the GPU setting, timed only: its
-# disparities come back to be scored here (fast.tar.gz; PoCL's run of the same preset
-# gave 11.55 % bad-2 all with seed 1).
+# disparities come back to be scored here (fast.tar.gz), to compare with PoCL's score
+# of the same preset (fast_preset() in host/stereo/stereo_params.cpp).
 mkdir -p "$out/fast"
 FLEXSIGHT_CL_LANES=1 .device/bin/flexsight_device_check "$scenes/manifest.txt" "$out/fast" \
   --repeat "$repeat" --reference 0 --preset fast 2>&1 | tee "$out/device_check_fast.md"

@@ -171,7 +171,7 @@ def plot_runtime_vs_bad2(runs, path, all_names, subset):
             times.append(a["seconds"])
             # OpenCL and reference runs give the same bytes, hence the same height, and
             # the PatchMatch variants sit close together: a legend keeps every name
-            # readable where labels beside the points overlapped. Reference runs are
+            # readable where labels beside the points would overlap. Reference runs are
             # hollow, so an OpenCL point and its reference twin tell apart.
             hollow = "reference" in key
             ax.scatter(a["seconds"], a["bad"]["2"], s=60, label=label,
