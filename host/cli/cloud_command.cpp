@@ -38,9 +38,11 @@ cv::Mat read_companion(const std::string& path, const cv::Mat& disparity, int ch
 }  // namespace
 
 int run_cloud_command(std::vector<std::string> args) {
-  if (args.empty() || take_flag(args, "--help") || take_flag(args, "-h")) {
+  // --help asks for the usage (exit 0); no arguments at all is a usage error (exit 1).
+  const bool help = take_flag(args, "--help") || take_flag(args, "-h");
+  if (help || args.empty()) {
     print_help();
-    return args.empty() ? 1 : 0;
+    return help ? 0 : 1;
   }
   std::string output = take_option(args, "-o");
   const std::string planes_path = take_option(args, "--planes");

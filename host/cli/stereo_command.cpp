@@ -166,9 +166,11 @@ void print_memory(size_t device_bytes, int width, int height) {
 }  // namespace
 
 int run_stereo_command(std::vector<std::string> args) {
-  if (args.empty() || take_flag(args, "--help") || take_flag(args, "-h")) {
+  // --help asks for the usage (exit 0); no arguments at all is a usage error (exit 1).
+  const bool help = take_flag(args, "--help") || take_flag(args, "-h");
+  if (help || args.empty()) {
     print_help();
-    return args.empty() ? 1 : 0;
+    return help ? 0 : 1;
   }
   StereoParams params;
   const std::optional<OpenCvMatcher> opencv = take_opencv_method(args);

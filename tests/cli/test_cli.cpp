@@ -113,6 +113,20 @@ TEST_F(Cli, SceneFolderReadsNdispFromCalibAndScoresAgainstGroundTruth) {
   EXPECT_NE(r.err.find("level 0"), std::string::npos) << "progress is shown";
 }
 
+// --help is a request (usage on stdout, exit 0); a command without arguments is a
+// usage error (exit 1), for every command.
+TEST_F(Cli, HelpExitsZeroAndNoArgumentsExitsOne) {
+  for (const std::string command : {"stereo", "eval", "cloud"}) {
+    const RunResult help = run_flexsight(command + " --help", dir_);
+    EXPECT_EQ(help.exit_code, 0) << command;
+    EXPECT_NE(help.out.find("usage: flexsight " + command), std::string::npos)
+        << command << ": " << help.out;
+    const RunResult bare = run_flexsight(command, dir_);
+    EXPECT_NE(bare.exit_code, 0) << command;
+  }
+  EXPECT_EQ(run_flexsight("devices --help", dir_).exit_code, 0);
+}
+
 TEST_F(Cli, RejectsAMissingImage) {
   const std::string missing = (dir_ / "nope.png").string();
   expect_rejected("stereo " + missing + " " + right_ + " -o " + output_, missing);
