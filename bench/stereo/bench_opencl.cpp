@@ -72,9 +72,35 @@ void restore(DeviceField& device, const PlaneField& host) {
   device.cost.write(host.cost);
 }
 
+// The checkerboard stages run both colours of the left view: every pixel once. Per
+// iteration the device field is restored to `start`, then `stage(s, colour, field)`
+// runs for both colours.
+template <typename Stage>
+void time_both_colours(benchmark::State& state, const PlaneField& start, const Stage& stage) {
+  DeviceField field = upload(start, "field");
+  time_on_device(
+      state, [&] { restore(field, start); },
+      [&](OpenClStages& s) {
+        for (int colour = 0; colour < 2; ++colour) stage(s, colour, field);
+      });
+}
+
+// A case's left and right disparity maps (disparities_of), on the device.
+struct DeviceDisparities {
+  Buffer<float> left;
+  Buffer<float> right;
+};
+
+DeviceDisparities device_disparities(const LevelCase& c) {
+  const testing_support::DisparityPair pair = disparities_of(c);
+  return {guarded(pair.left, "left"), guarded(pair.right, "right")};
+}
+
 // ------------------------------------------------------------------ pyramid
 
-void downsample_color(benchmark::State& state) {
+// The fixture's left view downsampled into the next level's view: its colour, and with
+// `with_gradient` its gradient too.
+void time_downsample(benchmark::State& state, bool with_gradient) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
   const int w = (c.width + 1) / 2;
@@ -83,16 +109,20 @@ void downsample_color(benchmark::State& state) {
                     guarded(std::vector<float>(2 * w * h), "coarse gradient")};
   time_on_device(state, [&](OpenClStages& s) {
     s.downsample_color(f.device_images[PMS_VIEW_LEFT], coarse);
+    if (with_gradient) s.compute_gradient(coarse);
   });
-  set_work_counters(state, downsample_color_work(c.width, c.height));
+  set_work_counters(state, with_gradient ? downsample_work(c.width, c.height)
+                                         : downsample_color_work(c.width, c.height));
 }
+
+void downsample_color(benchmark::State& state) { time_downsample(state, false); }
 
 void compute_gradient(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
   // Rewrites the gradient the fixture already holds, with the same bytes.
   time_on_device(state, [&](OpenClStages& s) { s.compute_gradient(f.device_images[0]); });
-  set_work_counters(state, compute_gradient_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kComputeGradientCost));
 }
 
 // Rewrites the left view's records the fixture already holds, with the same bytes.
@@ -102,23 +132,11 @@ void pack_match_samples(benchmark::State& state) {
   time_on_device(state, [&](OpenClStages& s) {
     s.pack_match_samples(f.device_images[PMS_VIEW_LEFT], f.device_match[PMS_VIEW_LEFT]);
   });
-  set_work_counters(state, pack_match_samples_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kPackMatchSamplesCost));
 }
 
 // The reference's downsample: both launches of a pyramid level.
-void downsample(benchmark::State& state) {
-  const LevelCase c = case_of(state);
-  LevelFixture& f = fixture(c);
-  const int w = (c.width + 1) / 2;
-  const int h = (c.height + 1) / 2;
-  DeviceView coarse{w, h, guarded(std::vector<float>(4 * w * h), "coarse colour"),
-                    guarded(std::vector<float>(2 * w * h), "coarse gradient")};
-  time_on_device(state, [&](OpenClStages& s) {
-    s.downsample_color(f.device_images[PMS_VIEW_LEFT], coarse);
-    s.compute_gradient(coarse);
-  });
-  set_work_counters(state, downsample_work(c.width, c.height));
-}
+void downsample(benchmark::State& state) { time_downsample(state, true); }
 
 // ---------------------------------------------------------- PatchMatch stages
 
@@ -142,54 +160,40 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. No
-// confidence (the coarsest level): every pixel tries all the spatial candidates.
+// No confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
-  const PlaneField& start = f.fields[PMS_VIEW_LEFT];
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  DeviceField field = upload(start, "field");
-  time_on_device(
-      state, [&] { restore(field, start); },
-      [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
-        }
-      });
+  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int colour, DeviceField& field) {
+                      s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, schedule, nullptr,
+                                          field);
+                    });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
 }
 
 void propagate_view(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c, true);
-  const PlaneField& start = f.fields[PMS_VIEW_LEFT];
-  DeviceField field = upload(start, "field");
   const DeviceField other = upload(f.fields[PMS_VIEW_RIGHT], "other field");
-  time_on_device(
-      state, [&] { restore(field, start); },
-      [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr, other,
-                           field);
-        }
-      });
+  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int colour, DeviceField& field) {
+                      s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, SearchSchedule{},
+                                       nullptr, other, field);
+                    });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));
 }
 
 void refine_random(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c, true);
-  const PlaneField& start = f.fields[PMS_VIEW_LEFT];
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  DeviceField field = upload(start, "field");
-  time_on_device(
-      state, [&] { restore(field, start); },
-      [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.refine_random(f.device_in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
-        }
-      });
+  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int colour, DeviceField& field) {
+                      s.refine_random(f.device_in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr,
+                                      field);
+                    });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));
 }
 
@@ -200,7 +204,7 @@ void carry_planes_to_finer(benchmark::State& state) {
   DeviceField fine{c.width, c.height, guarded(std::vector<float>(4 * pixels), "fine planes"),
                    guarded(std::vector<float>(pixels), "fine cost")};
   time_on_device(state, [&](OpenClStages& s) { s.carry_planes_to_finer(coarse, fine); });
-  set_work_counters(state, carry_planes_to_finer_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kCarryPlanesToFinerCost));
 }
 
 void upsample_nearest(benchmark::State& state) {
@@ -212,7 +216,7 @@ void upsample_nearest(benchmark::State& state) {
   time_on_device(state, [&](OpenClStages& s) {
     s.upsample_nearest(coarse, half.width, half.height, fine, c.width, c.height);
   });
-  set_work_counters(state, upsample_nearest_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kUpsampleNearestCost));
 }
 
 void plane_disparities(benchmark::State& state) {
@@ -220,38 +224,31 @@ void plane_disparities(benchmark::State& state) {
   const DeviceField field = upload(fixture(c).fields[PMS_VIEW_LEFT], "field");
   Buffer<float> disparity = guarded(std::vector<float>(c.width * c.height), "disparity");
   time_on_device(state, [&](OpenClStages& s) { s.plane_disparities(field, disparity); });
-  set_work_counters(state, plane_disparities_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kPlaneDisparitiesCost));
 }
 
 void lr_confidence(benchmark::State& state) {
   const LevelCase c = case_of(state);
-  const testing_support::DisparityPair pair =
-      testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
-  const Buffer<float> left = guarded(pair.left, "left");
-  const Buffer<float> right = guarded(pair.right, "right");
-  Buffer<float> confidence = guarded(std::vector<float>(pair.left.size()), "confidence");
+  const DeviceDisparities d = device_disparities(c);
+  Buffer<float> confidence = guarded(std::vector<float>(c.width * c.height), "confidence");
   time_on_device(state, [&](OpenClStages& s) {
-    s.lr_confidence(left, right, c.width, c.height, PMS_VIEW_LEFT, confidence);
+    s.lr_confidence(d.left, d.right, c.width, c.height, PMS_VIEW_LEFT, confidence);
   });
-  set_work_counters(state, lr_confidence_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kLrConfidenceCost));
 }
 
 // --------------------------------------------------------------- post-processing
 
-constexpr float kLrTolerance = 1.0f;  // StereoParams::lr_tolerance
-
 void left_right_check(benchmark::State& state) {
   const LevelCase c = case_of(state);
-  const testing_support::DisparityPair pair =
-      testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
-  const Buffer<float> left = guarded(pair.left, "left");
-  const Buffer<float> right = guarded(pair.right, "right");
+  const DeviceDisparities d = device_disparities(c);
   Buffer<std::uint8_t> consistent =
-      guarded(std::vector<std::uint8_t>(pair.left.size()), "consistent");
+      guarded(std::vector<std::uint8_t>(c.width * c.height), "consistent");
   time_on_device(state, [&](OpenClStages& s) {
-    s.left_right_check(left, right, c.width, c.height, PMS_VIEW_LEFT, kLrTolerance, consistent);
+    s.left_right_check(d.left, d.right, c.width, c.height, PMS_VIEW_LEFT, kLrTolerance,
+                       consistent);
   });
-  set_work_counters(state, left_right_check_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kLeftRightCheckCost));
 }
 
 void fill_inconsistent(benchmark::State& state) {
@@ -280,8 +277,7 @@ void weighted_median_filled(benchmark::State& state) {
     s.weighted_median_filled(disparity, consistent, f.device_images[PMS_VIEW_LEFT], weights,
                              m.radius, m.step, m.background_margin, filtered);
   });
-  set_work_counters(state,
-                    weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));
+  set_work_counters(state, weighted_median_filled_work(c, m));
 }
 
 // The final median over every pixel, with the default window.
@@ -289,14 +285,14 @@ void weighted_median_all(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
   const testing_support::MedianInputs m = testing_support::median_inputs(f, c);
-  const int radius = StereoParams{}.final_median_window / 2;
   const Buffer<float> disparity = guarded(m.disparity, "disparity");
   const Buffer<float> weights = guarded(m.weights, "weights");
   Buffer<float> filtered = guarded(std::vector<float>(m.disparity.size()), "filtered");
   time_on_device(state, [&](OpenClStages& s) {
-    s.weighted_median_all(disparity, f.device_images[PMS_VIEW_LEFT], weights, radius, filtered);
+    s.weighted_median_all(disparity, f.device_images[PMS_VIEW_LEFT], weights, kFinalMedianRadius,
+                          filtered);
   });
-  set_work_counters(state, weighted_median_all_work(c.width, c.height, radius));
+  set_work_counters(state, weighted_median_all_work(c.width, c.height, kFinalMedianRadius));
 }
 
 // ------------------------------------------------------------ the whole matcher
@@ -319,10 +315,7 @@ opencl::OpenClMatcher& matcher() {
 void whole_matcher(benchmark::State& state, StereoMethod method) {
   const LevelCase c = case_of(state);
   const testing_support::TexturedPair pair = testing_support::textured_pair(c);
-  StereoParams params;
-  params.method = method;
-  params.ndisp = c.ndisp;
-  params.window = c.window;
+  const StereoParams params = matcher_params(c, method);
   double wall_seconds = 0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();

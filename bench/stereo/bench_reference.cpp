@@ -40,13 +40,26 @@ ReferenceLevel& fixture(const LevelCase& c, bool advanced = false) {
   return cached_fixture<ReferenceLevel>(c, advanced);
 }
 
+// The checkerboard stages run both colours of the left view: every pixel once. Per
+// iteration the field is reset to `f`'s left field, then `stage(colour, field)` runs
+// for both colours.
+template <typename Stage>
+void time_both_colours(benchmark::State& state, const ReferenceLevel& f, const Stage& stage) {
+  PlaneField field;
+  time_on_host(
+      state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
+      [&] {
+        for (int colour = 0; colour < 2; ++colour) stage(colour, field);
+      });
+}
+
 // ------------------------------------------------------------------ pyramid
 
 void compute_gradient(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ViewImage image = fixture(c).images[PMS_VIEW_LEFT];
   time_on_host(state, [&] { flexsight::compute_gradient(image); });
-  set_work_counters(state, compute_gradient_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kComputeGradientCost));
 }
 
 // Colour and gradient of the next level (the OpenCL path's downsample_color, then
@@ -76,35 +89,24 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. No
-// confidence (the coarsest level): every pixel tries all the spatial candidates.
+// No confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  PlaneField field;
-  time_on_host(
-      state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
-      [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
-        }
-      });
+  time_both_colours(state, f, [&](int colour, PlaneField& field) {
+    flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
+  });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
 }
 
 void propagate_view(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c, true);
-  PlaneField field;
-  time_on_host(
-      state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
-      [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr,
-                                    f.fields[PMS_VIEW_RIGHT], field);
-        }
-      });
+  time_both_colours(state, f, [&](int colour, PlaneField& field) {
+    flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr,
+                              f.fields[PMS_VIEW_RIGHT], field);
+  });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));
 }
 
@@ -112,14 +114,9 @@ void refine_random(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c, true);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  PlaneField field;
-  time_on_host(
-      state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
-      [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::refine_random(f.in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
-        }
-      });
+  time_both_colours(state, f, [&](int colour, PlaneField& field) {
+    flexsight::refine_random(f.in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
+  });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));
 }
 
@@ -129,7 +126,7 @@ void carry_planes_to_finer(benchmark::State& state) {
   PlaneField fine;
   fine.resize(c.width, c.height);
   time_on_host(state, [&] { flexsight::carry_planes_to_finer(coarse, fine); });
-  set_work_counters(state, carry_planes_to_finer_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kCarryPlanesToFinerCost));
 }
 
 void upsample_nearest(benchmark::State& state) {
@@ -141,7 +138,7 @@ void upsample_nearest(benchmark::State& state) {
     benchmark::DoNotOptimize(
         flexsight::upsample_nearest(coarse, half.width, half.height, c.width, c.height));
   });
-  set_work_counters(state, upsample_nearest_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kUpsampleNearestCost));
 }
 
 void plane_disparities(benchmark::State& state) {
@@ -150,34 +147,30 @@ void plane_disparities(benchmark::State& state) {
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(flexsight::plane_disparities(field, reference_threads()));
   });
-  set_work_counters(state, plane_disparities_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kPlaneDisparitiesCost));
 }
 
 void lr_confidence(benchmark::State& state) {
   const LevelCase c = case_of(state);
-  const testing_support::DisparityPair pair =
-      testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
+  const testing_support::DisparityPair pair = disparities_of(c);
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(flexsight::lr_confidence(pair.left, pair.right, c.width, c.height,
                                                       PMS_VIEW_LEFT, reference_threads()));
   });
-  set_work_counters(state, lr_confidence_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kLrConfidenceCost));
 }
 
 // --------------------------------------------------------------- post-processing
 
-constexpr float kLrTolerance = 1.0f;  // StereoParams::lr_tolerance
-
 void left_right_check(benchmark::State& state) {
   const LevelCase c = case_of(state);
-  const testing_support::DisparityPair pair =
-      testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
+  const testing_support::DisparityPair pair = disparities_of(c);
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(flexsight::left_right_check(pair.left, pair.right, c.width,
                                                          c.height, PMS_VIEW_LEFT, kLrTolerance,
                                                          reference_threads()));
   });
-  set_work_counters(state, left_right_check_work(c.width, c.height));
+  set_work_counters(state, pixel_stage_work(c.width, c.height, kLeftRightCheckCost));
 }
 
 void fill_inconsistent(benchmark::State& state) {
@@ -202,8 +195,7 @@ void weighted_median_filled(benchmark::State& state) {
         m.disparity, m.consistent, f.images[PMS_VIEW_LEFT], m.weights.data(), m.radius, m.step,
         m.background_margin, reference_threads()));
   });
-  set_work_counters(state,
-                    weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step));
+  set_work_counters(state, weighted_median_filled_work(c, m));
 }
 
 // The final median over every pixel, with the default window.
@@ -211,12 +203,12 @@ void weighted_median_all(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c);
   const testing_support::MedianInputs m = testing_support::median_inputs(f, c);
-  const int radius = StereoParams{}.final_median_window / 2;
   time_on_host(state, [&] {
-    benchmark::DoNotOptimize(flexsight::weighted_median_all(
-        m.disparity, f.images[PMS_VIEW_LEFT], m.weights.data(), radius, reference_threads()));
+    benchmark::DoNotOptimize(
+        flexsight::weighted_median_all(m.disparity, f.images[PMS_VIEW_LEFT], m.weights.data(),
+                                       kFinalMedianRadius, reference_threads()));
   });
-  set_work_counters(state, weighted_median_all_work(c.width, c.height, radius));
+  set_work_counters(state, weighted_median_all_work(c.width, c.height, kFinalMedianRadius));
 }
 
 // ------------------------------------------------------------ the whole matcher
@@ -224,10 +216,7 @@ void weighted_median_all(benchmark::State& state) {
 void whole_matcher(benchmark::State& state, StereoMethod method) {
   const LevelCase c = case_of(state);
   const testing_support::TexturedPair pair = testing_support::textured_pair(c);
-  StereoParams params;
-  params.method = method;
-  params.ndisp = c.ndisp;
-  params.window = c.window;
+  const StereoParams params = matcher_params(c, method);
   time_on_host(state, [&] {
     benchmark::DoNotOptimize(run_stereo(pair.left, pair.right, params).disparity.data);
   });

@@ -82,4 +82,30 @@ inline LevelCase coarser_case(const LevelCase& c) {
   return testing_support::benchmark_case(c.width / 2, c.ndisp, c.window);
 }
 
+// The left and right disparity maps the left/right stages of a case read.
+inline testing_support::DisparityPair disparities_of(const LevelCase& c) {
+  return testing_support::random_disparities(c.width, c.height, c.ndisp, c.seed);
+}
+
+constexpr float kLrTolerance = 1.0f;  // StereoParams::lr_tolerance
+
+// The final median's radius, with the default window.
+constexpr int kFinalMedianRadius = StereoParams{}.final_median_window / 2;
+
+// The work of weighted_median_filled on a case's median inputs.
+inline Work weighted_median_filled_work(const LevelCase& c,
+                                        const testing_support::MedianInputs& m) {
+  return weighted_median_filled_work(c.width, c.height, m.consistent, m.radius, m.step);
+}
+
+// The parameters of a whole-matcher benchmark: the defaults with the case's method,
+// disparity range and window.
+inline StereoParams matcher_params(const LevelCase& c, StereoMethod method) {
+  StereoParams params;
+  params.method = method;
+  params.ndisp = c.ndisp;
+  params.window = c.window;
+  return params;
+}
+
 }  // namespace flexsight::bench

@@ -48,7 +48,7 @@
 //    and storing the best plane) is under 1% of the window work and left out of the
 //    flops; the bytes of loading and storing planes and costs are counted.
 //  - The stages without a window count their pixel's loads, stores and arithmetic as
-//    written in kernels/*.cl (see each function below).
+//    written in kernels/*.cl (see each PixelCost below).
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -154,75 +154,69 @@ inline Work refine_random_work(int width, int height, const PmsCostParams& cost,
   return cost_stage_work(width, height, cost, [&](int, int) { return trials; }, kBestPlaneBytes);
 }
 
-// A stage without a window: per-pixel flops and bytes as counted in the comments.
-inline Work pixel_stage_work(double pixels, double flops_per_pixel, double bytes_per_pixel) {
+// What a stage without a window does per pixel, as written in kernels/*.cl.
+struct PixelCost {
+  double flops;
+  double bytes;  // loaded and stored
+};
+
+// downsample_color, per coarse pixel: 3 channels x (3 adds, + 2, * 0.25, floor) = 18
+// flops; loads 4 pixels x 3 floats (48 B), stores 4 floats.
+constexpr PixelCost kDownsampleColorCost{18, 64};
+// compute_gradient, per pixel: 4 grey values (2 adds each), 2 differences, 2 scalings
+// = 12 flops; loads 4 neighbours x 3 floats (48 B), stores 2 floats.
+constexpr PixelCost kComputeGradientCost{12, 56};
+// pack_match_samples (OpenCL only), per pixel: 5 differences; loads the colour and
+// gradient at x and x + 1 (48 B), stores a 48-byte record.
+constexpr PixelCost kPackMatchSamplesCost{5, 96};
+// carry_planes_to_finer, per fine pixel: 4 flops (2c, a+b, *0.5, -); loads 12 B,
+// stores 16 B.
+constexpr PixelCost kCarryPlanesToFinerCost{4, 28};
+// upsample_nearest, per fine pixel: a copy (4 B in, 4 B out).
+constexpr PixelCost kUpsampleNearestCost{0, 8};
+// plane_disparities, per pixel: a*x + b*y + c = 4 flops; loads 12 B, stores 4 B.
+constexpr PixelCost kPlaneDisparitiesCost{4, 16};
+// lr_confidence, per pixel: the match x + direction*d rounded (4), |d - d'| (2),
+// 1 / (1 + .) (2) = 8 flops; loads 2 disparities, stores 1 float.
+constexpr PixelCost kLrConfidenceCost{8, 12};
+// left_right_check, per pixel: the match (4) and |d - d'| (2) = 6 flops; loads 2
+// disparities (8 B), stores 1 byte.
+constexpr PixelCost kLeftRightCheckCost{6, 9};
+
+// A stage without a window over `pixels`, `cost` per pixel.
+inline Work pixel_stage_work(double pixels, PixelCost cost) {
   Work work;
   work.pixels = pixels;
-  work.flops = pixels * flops_per_pixel;
-  work.bytes = pixels * bytes_per_pixel;
+  work.flops = pixels * cost.flops;
+  work.bytes = pixels * cost.bytes;
   return work;
+}
+
+// A stage without a window over every pixel of a width x height level (the finer level
+// for carry_planes_to_finer and upsample_nearest).
+inline Work pixel_stage_work(int width, int height, PixelCost cost) {
+  return pixel_stage_work(static_cast<double>(width) * height, cost);
 }
 
 inline double coarse_pixels(int width, int height) {
   return static_cast<double>((width + 1) / 2) * ((height + 1) / 2);
 }
 
-// downsample_color of a width x height level, per coarse pixel: 3 channels x (3 adds,
-// + 2, * 0.25, floor) = 18 flops; loads 4 pixels x 3 floats (48 B), stores 4 floats.
-// `pixels` is the fine level's: the benchmark is named by the level it reads.
+// downsample_color of a width x height level, per coarse pixel. `pixels` is the fine
+// level's: the benchmark is named by the level it reads.
 inline Work downsample_color_work(int width, int height) {
-  Work work = pixel_stage_work(coarse_pixels(width, height), 18, 64);
+  Work work = pixel_stage_work(coarse_pixels(width, height), kDownsampleColorCost);
   work.pixels = static_cast<double>(width) * height;
   return work;
-}
-
-// compute_gradient, per pixel: 4 grey values (2 adds each), 2 differences, 2 scalings
-// = 12 flops; loads 4 neighbours x 3 floats (48 B), stores 2 floats.
-inline Work compute_gradient_work(int width, int height) {
-  return pixel_stage_work(static_cast<double>(width) * height, 12, 56);
-}
-
-// pack_match_samples (OpenCL only), per pixel: 5 differences; loads the colour and
-// gradient at x and x + 1 (48 B), stores a 48-byte record.
-inline Work pack_match_samples_work(int width, int height) {
-  return pixel_stage_work(static_cast<double>(width) * height, 5, 96);
 }
 
 // The reference's downsample: the coarse colour, then the coarse gradient.
 inline Work downsample_work(int width, int height) {
   Work work = downsample_color_work(width, height);
-  Work gradient = compute_gradient_work((width + 1) / 2, (height + 1) / 2);
+  Work gradient = pixel_stage_work((width + 1) / 2, (height + 1) / 2, kComputeGradientCost);
   work.flops += gradient.flops;
   work.bytes += gradient.bytes;
   return work;
-}
-
-// carry_planes_to_finer, per fine pixel: 4 flops (2c, a+b, *0.5, -); loads 12 B,
-// stores 16 B.
-inline Work carry_planes_to_finer_work(int fine_width, int fine_height) {
-  return pixel_stage_work(static_cast<double>(fine_width) * fine_height, 4, 28);
-}
-
-// upsample_nearest, per fine pixel: a copy (4 B in, 4 B out).
-inline Work upsample_nearest_work(int fine_width, int fine_height) {
-  return pixel_stage_work(static_cast<double>(fine_width) * fine_height, 0, 8);
-}
-
-// plane_disparities, per pixel: a*x + b*y + c = 4 flops; loads 12 B, stores 4 B.
-inline Work plane_disparities_work(int width, int height) {
-  return pixel_stage_work(static_cast<double>(width) * height, 4, 16);
-}
-
-// lr_confidence, per pixel: the match x + direction*d rounded (4), |d - d'| (2),
-// 1 / (1 + .) (2) = 8 flops; loads 2 disparities, stores 1 float.
-inline Work lr_confidence_work(int width, int height) {
-  return pixel_stage_work(static_cast<double>(width) * height, 8, 12);
-}
-
-// left_right_check, per pixel: the match (4) and |d - d'| (2) = 6 flops; loads 2
-// disparities (8 B), stores 1 byte.
-inline Work left_right_check_work(int width, int height) {
-  return pixel_stage_work(static_cast<double>(width) * height, 6, 9);
 }
 
 // fill_inconsistent: every pixel loads its flag and stores 16 B; a consistent pixel

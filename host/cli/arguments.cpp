@@ -27,28 +27,32 @@ std::string float_text(float value) {
 
 std::string option_subject(const std::string& name) { return "option --" + name; }
 
-long parse_integer(const std::string& name, const std::string& text) {
+// The value of option `name` that `parse` (std::stol, std::stof) reads from the whole of
+// `text`; InputError "expected <what>" where it reads nothing or stops short.
+template <typename Parse>
+auto parse_whole(const std::string& name, const std::string& text, const char* what,
+                 const Parse& parse) {
   try {
     size_t used = 0;
-    long value = std::stol(text, &used);
+    const auto value = parse(text, &used);
     if (used == text.size()) return value;
   } catch (const std::exception&) {
   }
-  throw InputError(option_subject(name), "expected an integer, got '" + text + "'");
+  throw InputError(option_subject(name), std::string("expected ") + what + ", got '" + text + "'");
+}
+
+long parse_integer(const std::string& name, const std::string& text) {
+  return parse_whole(name, text, "an integer",
+                     [](const std::string& t, size_t* used) { return std::stol(t, used); });
 }
 
 float parse_float(const std::string& name, const std::string& text) {
-  try {
-    size_t used = 0;
-    float value = std::stof(text, &used);
-    if (used == text.size()) return value;
-  } catch (const std::exception&) {
-  }
-  throw InputError(option_subject(name), "expected a number, got '" + text + "'");
+  return parse_whole(name, text, "a number",
+                     [](const std::string& t, size_t* used) { return std::stof(t, used); });
 }
 
 template <typename Field>
-ParamOption integer_option(const char* name, const char* help, Field StereoParams::*field) {
+ParamOption integer_option(const char* name, Field StereoParams::*field, const char* help) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) {
             p.*field = static_cast<Field>(parse_integer(name, v));
@@ -56,7 +60,7 @@ ParamOption integer_option(const char* name, const char* help, Field StereoParam
           [field](const StereoParams& p) { return std::to_string(p.*field); }};
 }
 
-ParamOption float_option(const char* name, const char* help, float StereoParams::*field) {
+ParamOption float_option(const char* name, float StereoParams::*field, const char* help) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); },
           [field](const StereoParams& p) { return float_text(p.*field); }};
@@ -75,76 +79,85 @@ const std::vector<ParamOption>& param_options() {
          }
        },
        [](const StereoParams& p) { return std::string(method_name(p.method)); }},
-      integer_option("ndisp", "disparity range [0, ndisp - 1]", &StereoParams::ndisp),
-      integer_option("window", "support window side (odd)", &StereoParams::window),
-      integer_option("window-step", "sample every n-th window row/column", &StereoParams::window_step),
-      integer_option("window-step-fine", "PPMS: window step below the coarsest level",
-                     &StereoParams::window_step_fine),
-      integer_option("window-step-finest",
-                     "PPMS: window step on the finest level (0 = window-step-fine)",
-                     &StereoParams::window_step_finest),
-      float_option("alpha", "weight of the gradient term", &StereoParams::alpha),
-      float_option("tau-color", "colour truncation", &StereoParams::tau_color),
-      float_option("tau-gradient", "gradient truncation", &StereoParams::tau_gradient),
-      float_option("gamma", "support weight bandwidth", &StereoParams::gamma),
-      float_option("gamma-distance", "support weight distance bandwidth (px, inf = off)",
-                   &StereoParams::gamma_distance),
-      float_option("census-weight", "weight of the 5x5 census distance (0 = off)",
-                   &StereoParams::census_weight),
-      float_option("census-cap", "census distance counted up to this many bits (24 = no cap)",
-                   &StereoParams::census_cap),
-      integer_option("iterations", "PMS: iterations on its only level", &StereoParams::iterations),
-      integer_option("iterations-coarsest", "PPMS: iterations on the coarsest level",
-                     &StereoParams::iterations_coarsest),
-      integer_option("iterations-fine", "PPMS: iterations on the finer levels", &StereoParams::iterations_fine),
-      integer_option("iterations-finest",
-                     "PPMS: iterations on the finest level (0 = iterations-fine)",
-                     &StereoParams::iterations_finest),
-      float_option("min-search-range", "smallest random-search range (px)", &StereoParams::min_search_range),
-      float_option("fine-search-range", "PPMS: first random-search range below the coarsest level (px)",
-                   &StereoParams::fine_search_range),
-      float_option("confident-threshold", "confidence from which search is reduced",
-                   &StereoParams::confident_threshold),
-      float_option("confident-max-range", "largest search range for confident pixels (px)",
-                   &StereoParams::confident_max_range),
-      integer_option("confident-spatial-candidates",
-                     "PPMS: spatial candidates a confident pixel tries (0..16, nearest first)",
-                     &StereoParams::confident_spatial_candidates),
-      integer_option("refresh-confidence",
-                     "PPMS: recompute the confidence after each finer-level iteration (0/1)",
-                     &StereoParams::refresh_confidence),
-      float_option("max-normal-delta", "normal perturbation of the first trial",
-                   &StereoParams::max_normal_delta),
-      integer_option("coarsest-width", "PPMS: widest allowed coarsest level", &StereoParams::coarsest_width),
-      integer_option("pyramid-factor", "PPMS: downsampling factor (2)", &StereoParams::pyramid_factor),
-      integer_option("refill-iterations",
-                     "iterations after the finest level's check-and-fill (0 = none)",
-                     &StereoParams::refill_iterations),
-      integer_option("refill-unsure-only",
-                     "only the pixels that fail the check search in those iterations (0/1)",
-                     &StereoParams::refill_unsure_only),
-      integer_option("fill-coarse", "PPMS: fill occlusions before carrying planes (0/1)",
-                     &StereoParams::fill_coarse),
-      float_option("lr-tolerance", "left/right check tolerance (px)", &StereoParams::lr_tolerance),
-      integer_option("median-window", "weighted median window (odd)", &StereoParams::median_window),
-      float_option("median-gamma", "weighted median colour bandwidth", &StereoParams::median_gamma),
-      float_option("fill-max-extrapolation",
-                   "filled disparity at most this far from its source pixel's (px, inf = plane)",
-                   &StereoParams::fill_max_extrapolation),
-      float_option("median-background-margin",
-                   "hole median: votes at most this far above the filled disparity (px)",
-                   &StereoParams::median_background_margin),
-      integer_option("final-median-window", "weighted median over all pixels (odd, 1 = off)",
-                     &StereoParams::final_median_window),
-      float_option("final-median-gamma", "its colour bandwidth",
-                   &StereoParams::final_median_gamma),
-      integer_option("speckle-size", "refill segments smaller than this (px, 0 = off)",
-                     &StereoParams::speckle_size),
-      float_option("speckle-range", "their neighbours' largest disparity step (px)",
-                   &StereoParams::speckle_range),
-      integer_option("raw-speckle-size",
-                     "raw segments smaller than this fail the left/right check (px, 0 = off)",
-                     &StereoParams::raw_speckle_size),
+      // One layout for every row: the option and the field it sets, then its help.
+      // clang-format off
+      integer_option("ndisp", &StereoParams::ndisp,
+                     "disparity range [0, ndisp - 1]"),
+      integer_option("window", &StereoParams::window,
+                     "support window side (odd)"),
+      integer_option("window-step", &StereoParams::window_step,
+                     "sample every n-th window row/column"),
+      integer_option("window-step-fine", &StereoParams::window_step_fine,
+                     "PPMS: window step below the coarsest level"),
+      integer_option("window-step-finest", &StereoParams::window_step_finest,
+                     "PPMS: window step on the finest level (0 = window-step-fine)"),
+      float_option("alpha", &StereoParams::alpha,
+                   "weight of the gradient term"),
+      float_option("tau-color", &StereoParams::tau_color,
+                   "colour truncation"),
+      float_option("tau-gradient", &StereoParams::tau_gradient,
+                   "gradient truncation"),
+      float_option("gamma", &StereoParams::gamma,
+                   "support weight bandwidth"),
+      float_option("gamma-distance", &StereoParams::gamma_distance,
+                   "support weight distance bandwidth (px, inf = off)"),
+      float_option("census-weight", &StereoParams::census_weight,
+                   "weight of the 5x5 census distance (0 = off)"),
+      float_option("census-cap", &StereoParams::census_cap,
+                   "census distance counted up to this many bits (24 = no cap)"),
+      integer_option("iterations", &StereoParams::iterations,
+                     "PMS: iterations on its only level"),
+      integer_option("iterations-coarsest", &StereoParams::iterations_coarsest,
+                     "PPMS: iterations on the coarsest level"),
+      integer_option("iterations-fine", &StereoParams::iterations_fine,
+                     "PPMS: iterations on the finer levels"),
+      integer_option("iterations-finest", &StereoParams::iterations_finest,
+                     "PPMS: iterations on the finest level (0 = iterations-fine)"),
+      float_option("min-search-range", &StereoParams::min_search_range,
+                   "smallest random-search range (px)"),
+      float_option("fine-search-range", &StereoParams::fine_search_range,
+                   "PPMS: first random-search range below the coarsest level (px)"),
+      float_option("confident-threshold", &StereoParams::confident_threshold,
+                   "confidence from which search is reduced"),
+      float_option("confident-max-range", &StereoParams::confident_max_range,
+                   "largest search range for confident pixels (px)"),
+      integer_option("confident-spatial-candidates", &StereoParams::confident_spatial_candidates,
+                     "PPMS: spatial candidates a confident pixel tries (0..16, nearest first)"),
+      integer_option("refresh-confidence", &StereoParams::refresh_confidence,
+                     "PPMS: recompute the confidence after each finer-level iteration (0/1)"),
+      float_option("max-normal-delta", &StereoParams::max_normal_delta,
+                   "normal perturbation of the first trial"),
+      integer_option("coarsest-width", &StereoParams::coarsest_width,
+                     "PPMS: widest allowed coarsest level"),
+      integer_option("pyramid-factor", &StereoParams::pyramid_factor,
+                     "PPMS: downsampling factor (2)"),
+      integer_option("refill-iterations", &StereoParams::refill_iterations,
+                     "iterations after the finest level's check-and-fill (0 = none)"),
+      integer_option("refill-unsure-only", &StereoParams::refill_unsure_only,
+                     "only the pixels that fail the check search in those iterations (0/1)"),
+      integer_option("fill-coarse", &StereoParams::fill_coarse,
+                     "PPMS: fill occlusions before carrying planes (0/1)"),
+      float_option("lr-tolerance", &StereoParams::lr_tolerance,
+                   "left/right check tolerance (px)"),
+      integer_option("median-window", &StereoParams::median_window,
+                     "weighted median window (odd)"),
+      float_option("median-gamma", &StereoParams::median_gamma,
+                   "weighted median colour bandwidth"),
+      float_option("fill-max-extrapolation", &StereoParams::fill_max_extrapolation,
+                   "filled disparity at most this far from its source pixel's (px, inf = plane)"),
+      float_option("median-background-margin", &StereoParams::median_background_margin,
+                   "hole median: votes at most this far above the filled disparity (px)"),
+      integer_option("final-median-window", &StereoParams::final_median_window,
+                     "weighted median over all pixels (odd, 1 = off)"),
+      float_option("final-median-gamma", &StereoParams::final_median_gamma,
+                   "its colour bandwidth"),
+      integer_option("speckle-size", &StereoParams::speckle_size,
+                     "refill segments smaller than this (px, 0 = off)"),
+      float_option("speckle-range", &StereoParams::speckle_range,
+                   "their neighbours' largest disparity step (px)"),
+      integer_option("raw-speckle-size", &StereoParams::raw_speckle_size,
+                     "raw segments smaller than this fail the left/right check (px, 0 = off)"),
+      // clang-format on
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
          long value = parse_integer("seed", v);
@@ -154,7 +167,8 @@ const std::vector<ParamOption>& param_options() {
          p.seed = static_cast<std::uint32_t>(value);
        },
        [](const StereoParams& p) { return std::to_string(p.seed); }},
-      integer_option("threads", "reference-path threads (0 = all cores)", &StereoParams::threads),
+      integer_option("threads", &StereoParams::threads,
+                     "reference-path threads (0 = all cores)"),
   };
   return options;
 }

@@ -58,6 +58,17 @@ std::vector<fs::path> subfolders(const fs::path& root) {
   return folders;
 }
 
+// A scene that is a folder of its own, named after it: its left and right images.
+Scene folder_scene(const fs::path& folder, DatasetLayout layout, const char* left,
+                   const char* right) {
+  Scene scene;
+  scene.name = folder_name(folder);
+  scene.layout = layout;
+  scene.left_path = (folder / left).string();
+  scene.right_path = (folder / right).string();
+  return scene;
+}
+
 // ---- MiddEval3 -------------------------------------------------------------------
 
 bool is_middeval3_scene(const fs::path& folder) {
@@ -66,11 +77,7 @@ bool is_middeval3_scene(const fs::path& folder) {
 }
 
 Scene middeval3_scene(const fs::path& folder) {
-  Scene scene;
-  scene.name = folder_name(folder);
-  scene.layout = DatasetLayout::MiddEval3;
-  scene.left_path = (folder / "im0.png").string();
-  scene.right_path = (folder / "im1.png").string();
+  Scene scene = folder_scene(folder, DatasetLayout::MiddEval3, "im0.png", "im1.png");
   scene.calib_path = (folder / "calib.txt").string();
   // The test split ships without ground truth; such scenes can still be matched.
   scene.gt_path = if_exists(folder / "disp0GT.pfm");
@@ -99,11 +106,7 @@ double v2_scale(const std::string& scene_name) {
 }
 
 Scene v2_scene(const fs::path& folder) {
-  Scene scene;
-  scene.name = folder_name(folder);
-  scene.layout = DatasetLayout::MiddleburyV2;
-  scene.left_path = (folder / "imL.png").string();
-  scene.right_path = (folder / "imR.png").string();
+  Scene scene = folder_scene(folder, DatasetLayout::MiddleburyV2, "imL.png", "imR.png");
   scene.gt_path = if_exists(folder / "groundtruth.png");
   scene.nonocc_path = if_exists(folder / "nonocc.png");
   scene.gt_scale = v2_scale(scene.name);

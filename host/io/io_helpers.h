@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -113,6 +114,22 @@ inline cv::Mat single_channel_of_gray(const cv::Mat& image, const std::string& p
     throw InputError(path, "is a color image (its three channels differ), expected gray");
   }
   return planes[0];
+}
+
+// The CV_32FC1 disparity map of an integer image of type T that holds disparity * scale,
+// with +inf where it holds 0 (no disparity).
+template <typename T>
+cv::Mat decode_scaled_disparity(const cv::Mat& encoded, double scale) {
+  cv::Mat disparity(encoded.size(), CV_32FC1);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int y = 0; y < encoded.rows; ++y) {
+    const T* src = encoded.ptr<T>(y);
+    float* dst = disparity.ptr<float>(y);
+    for (int x = 0; x < encoded.cols; ++x) {
+      dst[x] = src[x] == 0 ? inf : static_cast<float>(src[x] / scale);
+    }
+  }
+  return disparity;
 }
 
 }  // namespace flexsight::io_detail

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
-#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
@@ -46,17 +45,7 @@ cv::Mat read_kitti_disparity(const std::string& path) {
                                ", but a KITTI disparity map must be a single-channel "
                                "16-bit PNG");
   }
-
-  cv::Mat disparity(png.size(), CV_32FC1);
-  const float inf = std::numeric_limits<float>::infinity();
-  for (int y = 0; y < png.rows; ++y) {
-    const auto* src = png.ptr<std::uint16_t>(y);
-    auto* dst = disparity.ptr<float>(y);
-    for (int x = 0; x < png.cols; ++x) {
-      dst[x] = src[x] == 0 ? inf : static_cast<float>(src[x]) / 256.0f;  // exact in float
-    }
-  }
-  return disparity;
+  return io_detail::decode_scaled_disparity<std::uint16_t>(png, 256.0);  // value / 256: exact
 }
 
 void write_kitti_disparity(const std::string& path, const cv::Mat& disparity) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "host/io/input_error.h"
 #include "host/io/io_helpers.h"
@@ -29,17 +28,7 @@ cv::Mat read_middlebury_v2_disparity(const std::string& path, double scale) {
                      "disparity scale must be a positive number, got " + std::to_string(scale));
   }
   const cv::Mat gray = read_gray8(path, "a Middlebury v2 disparity map");
-
-  cv::Mat disparity(gray.size(), CV_32FC1);
-  const float inf = std::numeric_limits<float>::infinity();
-  for (int y = 0; y < gray.rows; ++y) {
-    const auto* src = gray.ptr<std::uint8_t>(y);
-    auto* dst = disparity.ptr<float>(y);
-    for (int x = 0; x < gray.cols; ++x) {
-      dst[x] = src[x] == 0 ? inf : static_cast<float>(src[x] / scale);  // 0 = unknown
-    }
-  }
-  return disparity;
+  return io_detail::decode_scaled_disparity<std::uint8_t>(gray, scale);  // 0 = unknown
 }
 
 cv::Mat read_mask(const std::string& path) { return read_gray8(path, "a mask"); }

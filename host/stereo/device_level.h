@@ -10,20 +10,22 @@
 
 namespace flexsight::opencl {
 
-struct DeviceView {
+// The size of a level, what the buffers of a DeviceView or a DeviceField hold per pixel
+// of. Both stay aggregates, initialised as {width, height, buffer, buffer}.
+struct DeviceGrid {
   int width = 0;
   int height = 0;
-  Buffer<float> color;     // 4 floats per pixel
-  Buffer<float> gradient;  // 2 floats per pixel
   int pixels() const { return width * height; }
 };
 
-struct DeviceField {
-  int width = 0;
-  int height = 0;
+struct DeviceView : DeviceGrid {
+  Buffer<float> color;     // 4 floats per pixel
+  Buffer<float> gradient;  // 2 floats per pixel
+};
+
+struct DeviceField : DeviceGrid {
   Buffer<float> planes;  // 4 floats per pixel
   Buffer<float> cost;    // 1 float per pixel
-  int pixels() const { return width * height; }
 };
 
 // Floats of a view's match records (pack_match_samples): PMS_MATCH_RECORD per pixel and

@@ -90,17 +90,21 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       upsample_nearest_(make_kernel(src::upsample_nearest, "upsample_nearest")),
       left_right_check_(make_kernel(src::left_right_check, "left_right_check")),
       fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")),
-      segment_init_(make_kernel(src::small_segments, "segment_init")),
-      segment_merge_(make_kernel(src::small_segments, "segment_merge")),
-      segment_flatten_(make_kernel(src::small_segments, "segment_flatten")),
-      segment_count_(make_kernel(src::small_segments, "segment_count")),
-      segment_large_mask_(make_kernel(src::small_segments, "segment_large_mask")),
-      flat_planes_(make_kernel(src::small_segments, "flat_planes")),
-      mask_and_(make_kernel(src::small_segments, "mask_and")) {}
+      segment_init_(small_segments_kernel("segment_init")),
+      segment_merge_(small_segments_kernel("segment_merge")),
+      segment_flatten_(small_segments_kernel("segment_flatten")),
+      segment_count_(small_segments_kernel("segment_count")),
+      segment_large_mask_(small_segments_kernel("segment_large_mask")),
+      flat_planes_(small_segments_kernel("flat_planes")),
+      mask_and_(small_segments_kernel("mask_and")) {}
 
 Kernel OpenClStages::make_kernel(const KernelSource& source, const char* name,
                                  const std::string& options) {
   return Kernel(context_, context_.program(source, options), name);
+}
+
+Kernel OpenClStages::small_segments_kernel(const char* name) {
+  return make_kernel(src::small_segments, name);
 }
 
 template <typename... Rest>

@@ -94,6 +94,8 @@ class OpenClStages {
  private:
   Kernel make_kernel(const KernelSource& source, const char* name,
                      const std::string& options = {});
+  // A kernel of small_segments.cl (the small-segment mask, flat planes, mask_and).
+  Kernel small_segments_kernel(const char* name);
   // Sets the leading arguments of the cost kernels (PMS_COST_KERNEL_ARGS), then `rest`.
   template <typename... Rest>
   void set_cost_args(Kernel& kernel, const DeviceLevel& in, int view, const Rest&... rest);

@@ -1,6 +1,8 @@
 #include "host/stereo/stereo_params.h"
 
+#include <array>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "host/io/input_error.h"
@@ -93,19 +95,21 @@ const char* method_name(StereoMethod method) {
 
 namespace {
 
-// The speed knobs of a preset.
-struct SpeedKnobs {
-  int window_step;
-  int window_step_fine;
-  int window_step_finest;
-  int iterations_fine;
-  int iterations_finest;
-};
+// The speed knobs a preset sets, in the order of its values; the other parameters keep
+// theirs.
+constexpr int StereoParams::*kSpeedKnobs[] = {
+    &StereoParams::window_step,        &StereoParams::window_step_fine,
+    &StereoParams::window_step_finest, &StereoParams::iterations_fine,
+    &StereoParams::iterations_finest};
 
+using SpeedKnobs = std::array<int, std::size(kSpeedKnobs)>;
+
+// The defaults' knobs.
 SpeedKnobs accurate_preset() {
   const StereoParams defaults;
-  return {defaults.window_step, defaults.window_step_fine, defaults.window_step_finest,
-          defaults.iterations_fine, defaults.iterations_finest};
+  SpeedKnobs knobs{};
+  for (size_t k = 0; k < knobs.size(); ++k) knobs[k] = defaults.*kSpeedKnobs[k];
+  return knobs;
 }
 
 // Window steps 3 / 5 / 6 (coarsest level / levels between / finest: 144, 49 and 25 of
@@ -128,11 +132,7 @@ bool apply_stereo_preset(const std::string& name, StereoParams& params) {
   } else {
     return false;
   }
-  params.window_step = knobs.window_step;
-  params.window_step_fine = knobs.window_step_fine;
-  params.window_step_finest = knobs.window_step_finest;
-  params.iterations_fine = knobs.iterations_fine;
-  params.iterations_finest = knobs.iterations_finest;
+  for (size_t k = 0; k < knobs.size(); ++k) params.*kSpeedKnobs[k] = knobs[k];
   return true;
 }
 

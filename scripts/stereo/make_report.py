@@ -78,46 +78,55 @@ def averages(report, region, names=None):
     }
 
 
+def ran(runs):
+    """(key, label) of each method in `runs`, in report order."""
+    return [(key, label) for key, label in METHODS if key in runs]
+
+
+def markdown_table(header, rows):
+    """A Markdown table: the first column left-aligned, the others right-aligned."""
+    lines = ["| " + " | ".join(header) + " |", "|---|" + "---:|" * (len(header) - 1)]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def bad_cells(a, thresholds):
+    """The cells of the bad-t averages of `a`, for each threshold t."""
+    return [fmt(a["bad"][t]) for t in thresholds]
+
+
 def table_one(runs, region, all_names):
     """The paper's Table I: bad 0.5 / 1 / 2 / 4 and runtime, averaged over scenes."""
-    lines = [f"| method | scenes | bad 0.5 (%) | bad 1 (%) | bad 2 (%) | bad 4 (%) | runtime (mean) | runtime (median) |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for key, label in METHODS:
-        if key not in runs:
-            continue
+    rows = []
+    for key, label in ran(runs):
         a = averages(runs[key], region)
         subset = "all" if a["count"] == len(all_names) else f"{a['count']}"
-        lines.append(f"| {label} | {subset} | {fmt(a['bad']['0.5'])} | {fmt(a['bad']['1'])} | "
-                     f"{fmt(a['bad']['2'])} | {fmt(a['bad']['4'])} | {seconds_cell(a['seconds'])} | "
-                     f"{seconds_cell(a['median_seconds'])} |")
-    return "\n".join(lines)
+        rows.append([label, subset, *bad_cells(a, ("0.5", "1", "2", "4")),
+                     seconds_cell(a["seconds"]), seconds_cell(a["median_seconds"])])
+    return markdown_table(["method", "scenes", "bad 0.5 (%)", "bad 1 (%)", "bad 2 (%)", "bad 4 (%)",
+                           "runtime (mean)", "runtime (median)"], rows)
 
 
 def table_subset(runs, region, names):
     """All methods on the scenes the reference path ran on, so the rows compare."""
-    lines = [f"| method | bad 0.5 (%) | bad 1 (%) | bad 2 (%) | bad 4 (%) | runtime (mean) |",
-             "|---|---:|---:|---:|---:|---:|"]
-    for key, label in METHODS:
-        if key not in runs:
-            continue
+    rows = []
+    for key, label in ran(runs):
         a = averages(runs[key], region, names)
-        lines.append(f"| {label} | {fmt(a['bad']['0.5'])} | {fmt(a['bad']['1'])} | {fmt(a['bad']['2'])} | "
-                     f"{fmt(a['bad']['4'])} | {seconds_cell(a['seconds'])} |")
-    return "\n".join(lines)
+        rows.append([label, *bad_cells(a, ("0.5", "1", "2", "4")), seconds_cell(a["seconds"])])
+    return markdown_table(["method", "bad 0.5 (%)", "bad 1 (%)", "bad 2 (%)", "bad 4 (%)",
+                           "runtime (mean)"], rows)
 
 
 def table_two(runs):
     """The paper's Table II for KITTI: bad 2 / 3 and runtime, all (occ) and noc."""
-    lines = ["| method | bad 2 all (%) | bad 3 all (%) | bad 2 noc (%) | bad 3 noc (%) | density (%) | runtime |",
-             "|---|---:|---:|---:|---:|---:|---:|"]
-    for key, label in METHODS:
-        if key not in runs:
-            continue
+    rows = []
+    for key, label in ran(runs):
         a, n = averages(runs[key], "all"), averages(runs[key], "nonocc")
         density = mean([s["all"]["density"] for s in runs[key]["scenes"]])
-        lines.append(f"| {label} | {fmt(a['bad']['2'])} | {fmt(a['bad']['3'])} | {fmt(n['bad']['2'])} | "
-                     f"{fmt(n['bad']['3'])} | {fmt(density, 1)} | {seconds_cell(a['seconds'])} |")
-    return "\n".join(lines)
+        rows.append([label, *bad_cells(a, ("2", "3")), *bad_cells(n, ("2", "3")), fmt(density, 1),
+                     seconds_cell(a["seconds"])])
+    return markdown_table(["method", "bad 2 all (%)", "bad 3 all (%)", "bad 2 noc (%)",
+                           "bad 3 noc (%)", "density (%)", "runtime"], rows)
 
 
 def per_scene_table(runs, names):
