@@ -142,7 +142,7 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. No
+// The checkerboard stages run both parities of the left view: every pixel once. No
 // confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
@@ -153,8 +153,8 @@ void propagate_spatial(benchmark::State& state) {
   time_on_device(
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
+        for (int parity = 0; parity < 2; ++parity) {
+          s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, parity, schedule, nullptr, field);
         }
       });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
@@ -169,8 +169,8 @@ void propagate_view(benchmark::State& state) {
   time_on_device(
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr, other,
+        for (int parity = 0; parity < 2; ++parity) {
+          s.propagate_view(f.device_in, PMS_VIEW_LEFT, parity, SearchSchedule{}, nullptr, other,
                            field);
         }
       });
@@ -186,8 +186,8 @@ void refine_random(benchmark::State& state) {
   time_on_device(
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) {
-          s.refine_random(f.device_in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
+        for (int parity = 0; parity < 2; ++parity) {
+          s.refine_random(f.device_in, PMS_VIEW_LEFT, parity, 5, schedule, nullptr, field);
         }
       });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));

@@ -76,7 +76,7 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. No
+// The checkerboard stages run both parities of the left view: every pixel once. No
 // confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
@@ -86,8 +86,8 @@ void propagate_spatial(benchmark::State& state) {
   time_on_host(
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
+        for (int parity = 0; parity < 2; ++parity) {
+          flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, parity, schedule, nullptr, field);
         }
       });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
@@ -100,8 +100,8 @@ void propagate_view(benchmark::State& state) {
   time_on_host(
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr,
+        for (int parity = 0; parity < 2; ++parity) {
+          flexsight::propagate_view(f.in, PMS_VIEW_LEFT, parity, SearchSchedule{}, nullptr,
                                     f.fields[PMS_VIEW_RIGHT], field);
         }
       });
@@ -116,8 +116,8 @@ void refine_random(benchmark::State& state) {
   time_on_host(
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
-        for (int colour = 0; colour < 2; ++colour) {
-          flexsight::refine_random(f.in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
+        for (int parity = 0; parity < 2; ++parity) {
+          flexsight::refine_random(f.in, PMS_VIEW_LEFT, parity, 5, schedule, nullptr, field);
         }
       });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));

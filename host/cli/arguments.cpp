@@ -56,6 +56,19 @@ ParamOption integer_option(const char* name, const char* help, Field StereoParam
           [field](const StereoParams& p) { return std::to_string(p.*field); }};
 }
 
+// A switch: 1 (on) or 0 (off) on the command line and in reports.
+ParamOption flag_option(const char* name, const char* help, bool StereoParams::*field) {
+  return {name, help,
+          [name, field](StereoParams& p, const std::string& v) {
+            const long value = parse_integer(name, v);
+            if (value != 0 && value != 1) {
+              throw InputError(option_subject(name), "must be 0 or 1, got '" + v + "'");
+            }
+            p.*field = value == 1;
+          },
+          [field](const StereoParams& p) { return std::string(p.*field ? "1" : "0"); }};
+}
+
 ParamOption float_option(const char* name, const char* help, float StereoParams::*field) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); },
@@ -110,21 +123,20 @@ const std::vector<ParamOption>& param_options() {
       integer_option("confident-spatial-candidates",
                      "PPMS: spatial candidates a confident pixel tries (0..16, nearest first)",
                      &StereoParams::confident_spatial_candidates),
-      integer_option("refresh-confidence",
-                     "PPMS: recompute the confidence after each finer-level iteration (0/1)",
-                     &StereoParams::refresh_confidence),
+      flag_option("refresh-confidence",
+                  "PPMS: recompute the confidence after each finer-level iteration (0/1)",
+                  &StereoParams::refresh_confidence),
       float_option("max-normal-delta", "normal perturbation of the first trial",
                    &StereoParams::max_normal_delta),
       integer_option("coarsest-width", "PPMS: widest allowed coarsest level", &StereoParams::coarsest_width),
-      integer_option("pyramid-factor", "PPMS: downsampling factor (2)", &StereoParams::pyramid_factor),
       integer_option("refill-iterations",
                      "iterations after the finest level's check-and-fill (0 = none)",
                      &StereoParams::refill_iterations),
-      integer_option("refill-unsure-only",
-                     "only the pixels that fail the check search in those iterations (0/1)",
-                     &StereoParams::refill_unsure_only),
-      integer_option("fill-coarse", "PPMS: fill occlusions before carrying planes (0/1)",
-                     &StereoParams::fill_coarse),
+      flag_option("refill-unsure-only",
+                  "only the pixels that fail the check search in those iterations (0/1)",
+                  &StereoParams::refill_unsure_only),
+      flag_option("fill-coarse", "PPMS: fill occlusions before carrying planes (0/1)",
+                  &StereoParams::fill_coarse),
       float_option("lr-tolerance", "left/right check tolerance (px)", &StereoParams::lr_tolerance),
       integer_option("median-window", "weighted median window (odd)", &StereoParams::median_window),
       float_option("median-gamma", "weighted median colour bandwidth", &StereoParams::median_gamma),

@@ -50,12 +50,6 @@ bool opencl_available(std::string* why) {
   return false;
 }
 
-std::vector<std::string> list_opencl_devices() {
-  std::vector<std::string> lines;
-  for (const DeviceInfo& device : enumerate_devices()) lines.push_back(device.description());
-  return lines;
-}
-
 OpenClMatcher::OpenClMatcher(const OpenClOptions& options) {
   const std::string inexact = inexact_build_option(options.build_options);
   if (!inexact.empty()) throw std::invalid_argument("OpenCL build options: " + inexact);

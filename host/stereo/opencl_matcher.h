@@ -14,8 +14,9 @@ namespace flexsight::opencl {
 
 struct OpenClOptions {
   // Device selector: empty for the first usable GPU (else the first usable device), a
-  // number for an index of list_opencl_devices() (of the platform's devices when
-  // `platform` is set), otherwise part of "<platform> <device>" names.
+  // number for an index of enumerate_devices() (host/runtime/cl_device.h; of the
+  // platform's devices when `platform` is set), otherwise part of "<platform> <device>"
+  // names. `flexsight devices` lists them.
   std::string device;
   // Record every kernel launch's device time (see OpenClMatcher::kernel_timings).
   bool profile = false;
@@ -33,10 +34,6 @@ struct OpenClOptions {
 // True when at least one OpenCL device exists; otherwise false, with the reason in
 // *why (when given).
 bool opencl_available(std::string* why);
-
-// "#0 pthread-skylake-avx512-AMD EPYC (Portable Computing Language, CPU, OpenCL 3.0 ...)"
-// for every device, in selector index order. Empty when there is no platform.
-std::vector<std::string> list_opencl_devices();
 
 // Holds the device and its built programs across runs (building costs seconds).
 class OpenClMatcher {
@@ -62,7 +59,8 @@ class OpenClMatcher {
   // Device memory the last run() held at most in its buffers, in bytes.
   size_t peak_buffer_bytes() const;
 
-  // The chosen device, as in list_opencl_devices().
+  // The chosen device: DeviceInfo::description(), "#0 pthread-skylake-avx512-AMD EPYC
+  // (Portable Computing Language, CPU, OpenCL 3.0 ...)".
   std::string device_description() const;
 
  private:

@@ -66,7 +66,7 @@ struct StereoParams {
   // 12.09, 20 px 11.93 / 11.95 / 12.14 / 11.93 (seed 1: 50 px 12.15, 17.5 px 12.01).
   float gamma = 10.0f;
   float gamma_distance = 20.0f;
-  // PatchMatch iterations (each: both views, both checkerboard colours) of flat PMS, on
+  // PatchMatch iterations (each: both views, both checkerboard parities) of flat PMS, on
   // its only level (Bleyer et al. use 3).
   int iterations = 3;
   // PPMS: iterations on the coarsest level (at most coarsest_width pixels wide, so they
@@ -107,12 +107,12 @@ struct StereoParams {
   // PPMS: below the coarsest level, after every iteration but the last, the confidence
   // is recomputed from the level's own planes (the same left/right rule), so that the
   // next iteration spends its far candidates and wide trials on the pixels that are still
-  // inconsistent, not on those the carried confidence doubted (1 = on). 15 MiddEval3 Q
+  // inconsistent, not on those the carried confidence doubted. 15 MiddEval3 Q
   // scenes, OpenCL, bad-2 all, seed 1: off 11.60 % (confident_max_range 2) / 11.53 (1 px),
   // on 11.53 / 11.44; with 1 px, seeds 2 / 3: off 11.65 / -, on 11.56 / 11.58. Motorcycle
   // on PoCL: 6.7 s either way (refine_random 1.81 -> 1.65 s, the spatial propagation
   // unchanged: about as many pixels are confident after an iteration as before it).
-  int refresh_confidence = 1;
+  bool refresh_confidence = true;
   // On the finest level, after its iterations: the pixels of both views that fail the
   // left/right check take the background plane (as with fill_coarse), and this many more
   // iterations run, steered by that check (the confidence rules above). The filled
@@ -126,24 +126,22 @@ struct StereoParams {
   // 11.23 % (6.65).
   int refill_iterations = 1;
   // Only the pixels that fail that check (confidence below confident_threshold) search in
-  // those iterations; the others keep their planes (1 = on; 0: every pixel, steered by
-  // the check). The failed pixels are what the iteration is for; the consistent ones,
+  // those iterations; the others keep their planes (false: every pixel, steered by the
+  // check). The failed pixels are what the iteration is for; the consistent ones,
   // about 83 % of Motorcycle's, were mostly polishing their planes there, a sub-pixel
   // gain bad-2 does not see. 15 MiddEval3 Q scenes, OpenCL, bad-2 all / nonocc, seconds
   // per scene (PoCL, 2 cores): seed 1 every pixel 10.92 / 7.11 %, unsure only 10.95 /
   // 7.12 %; seed 2 11.05 / 7.28 % in 8.56 s, unsure only 11.10 / 7.26 % in 7.36 s
   // (0.86x); Motorcycle 6.52 -> 6.48 % (seed 2: 6.61 -> 6.54).
-  int refill_unsure_only = 1;
+  bool refill_unsure_only = true;
   // Largest normal perturbation per component at the first trial (then halved).
   float max_normal_delta = 1.0f;
   // PPMS: the coarsest level is the first whose width is at most this.
   int coarsest_width = 128;
-  // Downsampling factor between pyramid levels (2 only, for exact plane carrying).
-  int pyramid_factor = 2;
   // PPMS: each coarser level's planes go through the left/right check and the background
   // filling before they are carried, so that the finer level starts its occluded pixels
-  // from the background plane instead of whatever PatchMatch left there (1 = on).
-  int fill_coarse = 1;
+  // from the background plane instead of whatever PatchMatch left there.
+  bool fill_coarse = true;
   // Left/right check tolerance in pixels.
   float lr_tolerance = 1.0f;
   // A pixel that fails the check takes its background neighbour's plane, but its

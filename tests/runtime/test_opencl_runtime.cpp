@@ -2,6 +2,10 @@
 // buffers, argument and work-size checks.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
+#include "host/runtime/cl_device.h"
 #include "host/stereo/opencl_matcher.h"
 #include "tests/stereo/opencl/opencl_test_support.h"
 
@@ -15,6 +19,14 @@ const KernelSource kTiny = {"tiny.cl", 0x5678,
                             "  int x = get_global_id(0), y = get_global_id(1);\n"
                             "  if (x < width && y < height) out[y * width + x] = x + 100 * y;\n"
                             "}\n"};
+
+// "#0 pthread-skylake-avx512-AMD EPYC (Portable Computing Language, CPU, OpenCL 3.0 ...)"
+// for every device, in selector index order. Empty when there is no platform.
+std::vector<std::string> list_opencl_devices() {
+  std::vector<std::string> lines;
+  for (const DeviceInfo& device : enumerate_devices()) lines.push_back(device.description());
+  return lines;
+}
 
 TEST(OpenClRuntime, APlatformWithADeviceIsInstalled) {
   std::string why;
