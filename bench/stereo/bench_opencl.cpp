@@ -72,16 +72,16 @@ void restore(DeviceField& device, const PlaneField& host) {
   device.cost.write(host.cost);
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. Per
-// iteration the device field is restored to `start`, then `stage(s, colour, field)`
-// runs for both colours.
+// The checkerboard stages run both parities of the left view: every pixel once. Per
+// iteration the device field is restored to `start`, then `stage(s, parity, field)`
+// runs for both parities.
 template <typename Stage>
-void time_both_colours(benchmark::State& state, const PlaneField& start, const Stage& stage) {
+void time_both_parities(benchmark::State& state, const PlaneField& start, const Stage& stage) {
   DeviceField field = upload(start, "field");
   time_on_device(
       state, [&] { restore(field, start); },
       [&](OpenClStages& s) {
-        for (int colour = 0; colour < 2; ++colour) stage(s, colour, field);
+        for (int parity = 0; parity < 2; ++parity) stage(s, parity, field);
       });
 }
 
@@ -98,7 +98,7 @@ DeviceDisparities device_disparities(const LevelCase& c) {
 
 // ------------------------------------------------------------------ pyramid
 
-// The fixture's left view downsampled into the next level's view: its colour, and with
+// The fixture's left view downsampled into the next level's view: its parity, and with
 // `with_gradient` its gradient too.
 void time_downsample(benchmark::State& state, bool with_gradient) {
   const LevelCase c = case_of(state);
@@ -160,14 +160,15 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// No confidence (the coarsest level): every pixel tries all the spatial candidates.
+// The checkerboard stages run both parities of the left view: every pixel once. No
+// confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
-                    [&](OpenClStages& s, int colour, DeviceField& field) {
-                      s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, colour, schedule, nullptr,
+  time_both_parities(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int parity, DeviceField& field) {
+                      s.propagate_spatial(f.device_in, PMS_VIEW_LEFT, parity, schedule, nullptr,
                                           field);
                     });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
@@ -177,9 +178,9 @@ void propagate_view(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c, true);
   const DeviceField other = upload(f.fields[PMS_VIEW_RIGHT], "other field");
-  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
-                    [&](OpenClStages& s, int colour, DeviceField& field) {
-                      s.propagate_view(f.device_in, PMS_VIEW_LEFT, colour, SearchSchedule{},
+  time_both_parities(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int parity, DeviceField& field) {
+                      s.propagate_view(f.device_in, PMS_VIEW_LEFT, parity, SearchSchedule{},
                                        nullptr, other, field);
                     });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));
@@ -189,9 +190,9 @@ void refine_random(benchmark::State& state) {
   const LevelCase c = case_of(state);
   LevelFixture& f = fixture(c, true);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  time_both_colours(state, f.fields[PMS_VIEW_LEFT],
-                    [&](OpenClStages& s, int colour, DeviceField& field) {
-                      s.refine_random(f.device_in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr,
+  time_both_parities(state, f.fields[PMS_VIEW_LEFT],
+                    [&](OpenClStages& s, int parity, DeviceField& field) {
+                      s.refine_random(f.device_in, PMS_VIEW_LEFT, parity, 5, schedule, nullptr,
                                       field);
                     });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));

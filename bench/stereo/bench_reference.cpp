@@ -40,16 +40,16 @@ ReferenceLevel& fixture(const LevelCase& c, bool advanced = false) {
   return cached_fixture<ReferenceLevel>(c, advanced);
 }
 
-// The checkerboard stages run both colours of the left view: every pixel once. Per
-// iteration the field is reset to `f`'s left field, then `stage(colour, field)` runs
-// for both colours.
+// The checkerboard stages run both parities of the left view: every pixel once. Per
+// iteration the field is reset to `f`'s left field, then `stage(parity, field)` runs
+// for both parities.
 template <typename Stage>
-void time_both_colours(benchmark::State& state, const ReferenceLevel& f, const Stage& stage) {
+void time_both_parities(benchmark::State& state, const ReferenceLevel& f, const Stage& stage) {
   PlaneField field;
   time_on_host(
       state, [&] { field = f.fields[PMS_VIEW_LEFT]; },
       [&] {
-        for (int colour = 0; colour < 2; ++colour) stage(colour, field);
+        for (int parity = 0; parity < 2; ++parity) stage(parity, field);
       });
 }
 
@@ -89,13 +89,14 @@ void evaluate_costs(benchmark::State& state) {
   set_work_counters(state, evaluate_costs_work(c.width, c.height, f.in.cost));
 }
 
-// No confidence (the coarsest level): every pixel tries all the spatial candidates.
+// The checkerboard stages run both parities of the left view: every pixel once. No
+// confidence (the coarsest level): every pixel tries all the spatial candidates.
 void propagate_spatial(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  time_both_colours(state, f, [&](int colour, PlaneField& field) {
-    flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, nullptr, field);
+  time_both_parities(state, f, [&](int parity, PlaneField& field) {
+    flexsight::propagate_spatial(f.in, PMS_VIEW_LEFT, parity, schedule, nullptr, field);
   });
   set_work_counters(state, propagate_spatial_work(c.width, c.height, f.in.cost));
 }
@@ -103,8 +104,8 @@ void propagate_spatial(benchmark::State& state) {
 void propagate_view(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c, true);
-  time_both_colours(state, f, [&](int colour, PlaneField& field) {
-    flexsight::propagate_view(f.in, PMS_VIEW_LEFT, colour, SearchSchedule{}, nullptr,
+  time_both_parities(state, f, [&](int parity, PlaneField& field) {
+    flexsight::propagate_view(f.in, PMS_VIEW_LEFT, parity, SearchSchedule{}, nullptr,
                               f.fields[PMS_VIEW_RIGHT], field);
   });
   set_work_counters(state, propagate_view_work(c.width, c.height, f.in.cost));
@@ -114,8 +115,8 @@ void refine_random(benchmark::State& state) {
   const LevelCase c = case_of(state);
   ReferenceLevel& f = fixture(c, true);
   const SearchSchedule schedule = testing_support::search_schedule(c.ndisp);
-  time_both_colours(state, f, [&](int colour, PlaneField& field) {
-    flexsight::refine_random(f.in, PMS_VIEW_LEFT, colour, 5, schedule, nullptr, field);
+  time_both_parities(state, f, [&](int parity, PlaneField& field) {
+    flexsight::refine_random(f.in, PMS_VIEW_LEFT, parity, 5, schedule, nullptr, field);
   });
   set_work_counters(state, refine_random_work(c.width, c.height, f.in.cost, schedule));
 }

@@ -126,7 +126,7 @@ inline Work evaluate_costs_work(int width, int height, const PmsCostParams& cost
 // traffic of every candidate stage besides its windows.
 constexpr double kBestPlaneBytes = 32;
 
-// propagate_spatial over both colours (every pixel once): the in-image neighbours of
+// propagate_spatial over both parities (every pixel once): the in-image neighbours of
 // pms_spatial_offset, each plane read (12 B).
 inline Work propagate_spatial_work(int width, int height, const PmsCostParams& cost) {
   auto neighbours = [&](int x, int y) {
@@ -142,12 +142,12 @@ inline Work propagate_spatial_work(int width, int height, const PmsCostParams& c
   return cost_stage_work(width, height, cost, neighbours, kBestPlaneBytes, 12);
 }
 
-// propagate_view over both colours: one candidate per pixel, the other view's plane.
+// propagate_view over both parities: one candidate per pixel, the other view's plane.
 inline Work propagate_view_work(int width, int height, const PmsCostParams& cost) {
   return cost_stage_work(width, height, cost, [](int, int) { return 1; }, kBestPlaneBytes, 12);
 }
 
-// refine_random over both colours, without confidence: every trial of the schedule.
+// refine_random over both parities, without confidence: every trial of the schedule.
 inline Work refine_random_work(int width, int height, const PmsCostParams& cost,
                                const SearchSchedule& schedule) {
   const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);

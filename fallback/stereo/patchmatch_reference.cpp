@@ -22,14 +22,14 @@ float plane_cost(const LevelInputs& in, int view, int x, int y, const float* abc
                         abc[0], abc[1], abc[2], view_direction(view), bound);
 }
 
-// Runs `update(x, y)` on every pixel of `colour` (or every pixel for colour < 0), rows
+// Runs `update(x, y)` on every pixel of `parity` (or every pixel for parity < 0), rows
 // spread over threads. Determinism comes from the stages, not from this loop.
 template <typename Update>
-void for_each_pixel(int width, int height, int colour, int threads, const Update& update) {
+void for_each_pixel(int width, int height, int parity, int threads, const Update& update) {
 #pragma omp parallel for schedule(dynamic, 2) num_threads(threads)
   for (int y = 0; y < height; ++y) {
-    int x_begin = colour < 0 ? 0 : (y + colour) % 2;
-    int x_step = colour < 0 ? 1 : 2;
+    int x_begin = parity < 0 ? 0 : (y + parity) % 2;
+    int x_step = parity < 0 ? 1 : 2;
     for (int x = x_begin; x < width; x += x_step) update(x, y);
   }
 }
@@ -97,10 +97,10 @@ void evaluate_costs(const LevelInputs& in, int view, PlaneField& field,
   });
 }
 
-void propagate_spatial(const LevelInputs& in, int view, int colour,
+void propagate_spatial(const LevelInputs& in, int view, int parity,
                        const SearchSchedule& schedule, const std::vector<float>* confidence,
                        PlaneField& field) {
-  for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
+  for_each_pixel(field.width, field.height, parity, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
     bool confident = is_confident(schedule, confidence, index);
     if (confident && schedule.unsure_only) return;
@@ -124,11 +124,11 @@ void propagate_spatial(const LevelInputs& in, int view, int colour,
   });
 }
 
-void propagate_view(const LevelInputs& in, int view, int colour, const SearchSchedule& schedule,
+void propagate_view(const LevelInputs& in, int view, int parity, const SearchSchedule& schedule,
                     const std::vector<float>* confidence, const PlaneField& other,
                     PlaneField& field) {
   const float direction = view_direction(view);
-  for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
+  for_each_pixel(field.width, field.height, parity, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
     if (schedule.unsure_only && is_confident(schedule, confidence, index)) return;
     BestPlane best(field, index);
@@ -146,7 +146,7 @@ void propagate_view(const LevelInputs& in, int view, int colour, const SearchSch
   });
 }
 
-void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t iteration,
+void refine_random(const LevelInputs& in, int view, int parity, std::uint32_t iteration,
                    const SearchSchedule& schedule, const std::vector<float>* confidence,
                    PlaneField& field) {
   const int trials = pms_search_trial_count(schedule.initial_range, schedule.min_range);
@@ -154,7 +154,7 @@ void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t it
   // confident_max_range (the OpenCL path launches them for the unsure pixels only).
   const int wide =
       pms_search_wide_trial_count(schedule.initial_range, trials, schedule.confident_max_range);
-  for_each_pixel(field.width, field.height, colour, in.threads, [&](int x, int y) {
+  for_each_pixel(field.width, field.height, parity, in.threads, [&](int x, int y) {
     int index = y * field.width + x;
     bool confident = is_confident(schedule, confidence, index);
     if (confident && schedule.unsure_only) return;

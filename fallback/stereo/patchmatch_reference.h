@@ -1,7 +1,7 @@
 #pragma once
 // The PatchMatch Stereo stages of one pyramid level, scalar C++, one function per
 // kernel of kernels/. Every stage writes only the pixels it owns (one view, and for
-// the checkerboard stages one colour) and reads nothing another pixel of the same call
+// the checkerboard stages one parity) and reads nothing another pixel of the same call
 // writes, so the result is the same for any number of threads.
 #include <cstdint>
 #include <vector>
@@ -58,22 +58,22 @@ void init_random_planes(const LevelInputs& in, int view, std::uint32_t iteration
 void evaluate_costs(const LevelInputs& in, int view, PlaneField& field,
                     const std::vector<std::uint8_t>* unchanged = nullptr);
 
-// Pixels of `colour` ((x + y) % 2) try the planes of their PMS_SPATIAL_CANDIDATES
-// neighbours of the other colour, confident ones only the schedule's nearest.
+// Pixels of `parity` ((x + y) % 2) try the planes of their PMS_SPATIAL_CANDIDATES
+// neighbours of the other parity, confident ones only the schedule's nearest.
 // `confidence` (may be null: no pixel is confident) is per pixel of this level.
-void propagate_spatial(const LevelInputs& in, int view, int colour,
+void propagate_spatial(const LevelInputs& in, int view, int parity,
                        const SearchSchedule& schedule, const std::vector<float>* confidence,
                        PlaneField& field);
 
-// Pixels of `colour` try the plane of the pixel they match in the other view.
+// Pixels of `parity` try the plane of the pixel they match in the other view.
 // `confidence` (may be null) matters only with schedule.unsure_only.
-void propagate_view(const LevelInputs& in, int view, int colour, const SearchSchedule& schedule,
+void propagate_view(const LevelInputs& in, int view, int parity, const SearchSchedule& schedule,
                     const std::vector<float>* confidence, const PlaneField& other,
                     PlaneField& field);
 
-// Pixels of `colour` try random perturbations of their plane with halving ranges.
+// Pixels of `parity` try random perturbations of their plane with halving ranges.
 // `confidence` (may be null) is per pixel of this level.
-void refine_random(const LevelInputs& in, int view, int colour, std::uint32_t iteration,
+void refine_random(const LevelInputs& in, int view, int parity, std::uint32_t iteration,
                    const SearchSchedule& schedule, const std::vector<float>* confidence,
                    PlaneField& field);
 

@@ -60,6 +60,19 @@ ParamOption integer_option(const char* name, Field StereoParams::*field, const c
           [field](const StereoParams& p) { return std::to_string(p.*field); }};
 }
 
+// A switch: 1 (on) or 0 (off) on the command line and in reports.
+ParamOption flag_option(const char* name, bool StereoParams::*field, const char* help) {
+  return {name, help,
+          [name, field](StereoParams& p, const std::string& v) {
+            const long value = parse_integer(name, v);
+            if (value != 0 && value != 1) {
+              throw InputError(option_subject(name), "must be 0 or 1, got '" + v + "'");
+            }
+            p.*field = value == 1;
+          },
+          [field](const StereoParams& p) { return std::string(p.*field ? "1" : "0"); }};
+}
+
 ParamOption float_option(const char* name, float StereoParams::*field, const char* help) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); },
@@ -123,19 +136,17 @@ const std::vector<ParamOption>& param_options() {
                    "largest search range for confident pixels (px)"),
       integer_option("confident-spatial-candidates", &StereoParams::confident_spatial_candidates,
                      "PPMS: spatial candidates a confident pixel tries (0..16, nearest first)"),
-      integer_option("refresh-confidence", &StereoParams::refresh_confidence,
+      flag_option("refresh-confidence", &StereoParams::refresh_confidence,
                      "PPMS: recompute the confidence after each finer-level iteration (0/1)"),
       float_option("max-normal-delta", &StereoParams::max_normal_delta,
                    "normal perturbation of the first trial"),
       integer_option("coarsest-width", &StereoParams::coarsest_width,
                      "PPMS: widest allowed coarsest level"),
-      integer_option("pyramid-factor", &StereoParams::pyramid_factor,
-                     "PPMS: downsampling factor (2)"),
       integer_option("refill-iterations", &StereoParams::refill_iterations,
                      "iterations after the finest level's check-and-fill (0 = none)"),
-      integer_option("refill-unsure-only", &StereoParams::refill_unsure_only,
+      flag_option("refill-unsure-only", &StereoParams::refill_unsure_only,
                      "only the pixels that fail the check search in those iterations (0/1)"),
-      integer_option("fill-coarse", &StereoParams::fill_coarse,
+      flag_option("fill-coarse", &StereoParams::fill_coarse,
                      "PPMS: fill occlusions before carrying planes (0/1)"),
       float_option("lr-tolerance", &StereoParams::lr_tolerance,
                    "left/right check tolerance (px)"),

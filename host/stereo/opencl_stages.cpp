@@ -125,7 +125,7 @@ size_t OpenClStages::lane_items(size_t pixels) const {
   return (pixels + lanes - 1) / lanes;
 }
 
-// One work item per cost_lanes_ pixels of the colour: half a row, rounded up.
+// One work item per cost_lanes_ pixels of the parity: half a row, rounded up.
 void OpenClStages::launch_checkerboard(Kernel& kernel, int width, int height) {
   launch(kernel, lane_items((static_cast<size_t>(width) + 1) / 2), height);
 }
@@ -174,25 +174,25 @@ void OpenClStages::evaluate_costs(const DeviceLevel& in, int view, DeviceField& 
 }
 
 int OpenClStages::list_unsure_pixels(const Buffer<float>& confidence, int width, int height,
-                                     int colour, float confident_threshold) {
+                                     int parity, float confident_threshold) {
   const int stride = (width + 1) / 2;
   const size_t entries = static_cast<size_t>(stride) * height;
   if (unsure_list_.size() < entries) unsure_list_ = Buffer<int>(context_, entries, "unsure pixels");
   if (unsure_counts_.size() < static_cast<size_t>(height)) {
     unsure_counts_ = Buffer<int>(context_, height, "unsure pixel counts");
   }
-  list_unsure_pixels_.set_args(confidence, width, height, colour, confident_threshold, stride,
+  list_unsure_pixels_.set_args(confidence, width, height, parity, confident_threshold, stride,
                                unsure_list_, unsure_counts_);
   launch(list_unsure_pixels_, height, 1);
   return stride;
 }
 
 // The reference's per-pixel rule (pms_spatial_candidate_tried) as two launches with the
-// same order per pixel: every pixel of the colour tries the near candidates, then the
+// same order per pixel: every pixel of the parity tries the near candidates, then the
 // unsure ones the rest. Launching the far candidates over a list keeps confident lanes
 // from riding along idle beside an unsure one. With schedule.unsure_only the confident
 // pixels try none: one launch of every candidate over the list.
-void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour,
+void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int parity,
                                      const SearchSchedule& schedule,
                                      const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "propagate_spatial");
@@ -203,23 +203,23 @@ void OpenClStages::propagate_spatial(const DeviceLevel& in, int view, int colour
                                           : std::clamp(schedule.confident_spatial_candidates, 0,
                                                        PMS_SPATIAL_CANDIDATES);
   if (near > 0) {
-    set_cost_args(propagate_spatial_, in, view, colour, 0, near, every_pixel, every_pixel, 0,
+    set_cost_args(propagate_spatial_, in, view, parity, 0, near, every_pixel, every_pixel, 0,
                   field.planes, field.cost);
     launch_checkerboard(propagate_spatial_, field.width, field.height);
   }
   if (near < PMS_SPATIAL_CANDIDATES) {
-    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, parity,
                                           schedule.confident_threshold);
     const Buffer<int>* unsure = &unsure_list_;
     const Buffer<int>* counts = &unsure_counts_;
-    set_cost_args(propagate_spatial_, in, view, colour, near, PMS_SPATIAL_CANDIDATES, unsure,
+    set_cost_args(propagate_spatial_, in, view, parity, near, PMS_SPATIAL_CANDIDATES, unsure,
                   counts, stride, field.planes, field.cost);
     launch_checkerboard(propagate_spatial_, field.width, field.height);
   }
 }
 
-// Every pixel of the colour, or with schedule.unsure_only the unsure ones of the list.
-void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
+// Every pixel of the parity, or with schedule.unsure_only the unsure ones of the list.
+void OpenClStages::propagate_view(const DeviceLevel& in, int view, int parity,
                                   const SearchSchedule& schedule,
                                   const Buffer<float>* confidence, const DeviceField& other,
                                   DeviceField& field) {
@@ -227,15 +227,15 @@ void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
   require_field(other, "propagate_view");
   if (confidence) require_size(*confidence, field.pixels(), "propagate_view");
   if (confidence && schedule.unsure_only) {
-    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, parity,
                                           schedule.confident_threshold);
     const Buffer<int>* unsure = &unsure_list_;
     const Buffer<int>* counts = &unsure_counts_;
-    set_cost_args(propagate_view_, in, view, colour, other.planes, unsure, counts, stride,
+    set_cost_args(propagate_view_, in, view, parity, other.planes, unsure, counts, stride,
                   field.planes, field.cost);
   } else {
     const Buffer<int>* every_pixel = nullptr;
-    set_cost_args(propagate_view_, in, view, colour, other.planes, every_pixel, every_pixel, 0,
+    set_cost_args(propagate_view_, in, view, parity, other.planes, every_pixel, every_pixel, 0,
                   field.planes, field.cost);
   }
   launch_checkerboard(propagate_view_, field.width, field.height);
@@ -243,10 +243,10 @@ void OpenClStages::propagate_view(const DeviceLevel& in, int view, int colour,
 
 // The reference's per-pixel rule (confident pixels skip the trials wider than
 // confident_max_range, which come first) as two launches with the same order per pixel:
-// the unsure pixels of the colour try the wide trials, then every pixel the rest. With
+// the unsure pixels of the parity try the wide trials, then every pixel the rest. With
 // schedule.unsure_only every trial is "wide": the unsure pixels try them all, the
 // confident ones none.
-void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
+void OpenClStages::refine_random(const DeviceLevel& in, int view, int parity,
                                  std::uint32_t iteration, const SearchSchedule& schedule,
                                  const Buffer<float>* confidence, DeviceField& field) {
   require_level(in, field, "refine_random");
@@ -259,17 +259,17 @@ void OpenClStages::refine_random(const DeviceLevel& in, int view, int colour,
                                                 schedule.initial_range, trials,
                                                 schedule.confident_max_range);
   if (wide > 0) {
-    const int stride = list_unsure_pixels(*confidence, field.width, field.height, colour,
+    const int stride = list_unsure_pixels(*confidence, field.width, field.height, parity,
                                           schedule.confident_threshold);
     const Buffer<int>* unsure = &unsure_list_;
     const Buffer<int>* counts = &unsure_counts_;
-    set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
+    set_cost_args(refine_random_, in, view, parity, in.seed, iteration, in.max_disparity(),
                   schedule.initial_range, schedule.normal_range, 0, wide, unsure, counts,
                   stride, field.planes, field.cost);
     launch_checkerboard(refine_random_, field.width, field.height);
   }
   if (wide < trials) {
-    set_cost_args(refine_random_, in, view, colour, in.seed, iteration, in.max_disparity(),
+    set_cost_args(refine_random_, in, view, parity, in.seed, iteration, in.max_disparity(),
                   schedule.initial_range, schedule.normal_range, wide, trials, every_pixel,
                   every_pixel, 0, field.planes, field.cost);
     launch_checkerboard(refine_random_, field.width, field.height);

@@ -54,13 +54,13 @@ class OpenClStages {
   // `unchanged` (may be null): pixels where it is nonzero keep their cost (reference).
   void evaluate_costs(const DeviceLevel& in, int view, DeviceField& field,
                       const Buffer<std::uint8_t>* unchanged = nullptr);
-  void propagate_spatial(const DeviceLevel& in, int view, int colour,
+  void propagate_spatial(const DeviceLevel& in, int view, int parity,
                          const SearchSchedule& schedule, const Buffer<float>* confidence,
                          DeviceField& field);
-  void propagate_view(const DeviceLevel& in, int view, int colour,
+  void propagate_view(const DeviceLevel& in, int view, int parity,
                       const SearchSchedule& schedule, const Buffer<float>* confidence,
                       const DeviceField& other, DeviceField& field);
-  void refine_random(const DeviceLevel& in, int view, int colour, std::uint32_t iteration,
+  void refine_random(const DeviceLevel& in, int view, int parity, std::uint32_t iteration,
                      const SearchSchedule& schedule, const Buffer<float>* confidence,
                      DeviceField& field);
   void carry_planes_to_finer(const DeviceField& coarse, DeviceField& fine);
@@ -106,9 +106,9 @@ class OpenClStages {
   Kernel& median_kernel(const std::string& name, int side);
 
   size_t lane_items(size_t pixels) const;
-  // The pixels of `colour` that are not confident, row by row, into unsure_list_ and
+  // The pixels of `parity` that are not confident, row by row, into unsure_list_ and
   // unsure_counts_ (list_unsure_pixels.cl); returns the list's row stride.
-  int list_unsure_pixels(const Buffer<float>& confidence, int width, int height, int colour,
+  int list_unsure_pixels(const Buffer<float>& confidence, int width, int height, int parity,
                          float confident_threshold);
 
   Context& context_;

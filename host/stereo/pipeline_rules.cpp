@@ -86,12 +86,12 @@ LevelPlan plan_level(const StereoParams& params, int level, int levels, int widt
   plan.schedule.confident_spatial_candidates = params.confident_spatial_candidates;
 
   plan.use_confidence = !plan.coarsest;
-  plan.refresh_confidence = plan.use_confidence && params.refresh_confidence == 1;
+  plan.refresh_confidence = plan.use_confidence && params.refresh_confidence;
   plan.compute_confidence = level > 0;
-  plan.fill_before_carry = level > 0 && params.fill_coarse == 1;
+  plan.fill_before_carry = level > 0 && params.fill_coarse;
   plan.refill_iterations = level == 0 ? params.refill_iterations : 0;
   plan.refill_schedule = plan.schedule;
-  plan.refill_schedule.unsure_only = params.refill_unsure_only == 1;
+  plan.refill_schedule.unsure_only = params.refill_unsure_only;
   plan.refill_use_confidence = plan.use_confidence || plan.refill_schedule.unsure_only;
   plan.name = "level " + std::to_string(level) + " (" + std::to_string(width) + "x" +
               std::to_string(height) + ")";

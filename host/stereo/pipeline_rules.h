@@ -35,7 +35,7 @@ struct LevelPlan {
   bool coarsest = false;
   int ndisp = 0;      // disparity range of the level
   PmsCostParams cost{};
-  int iterations = 0;  // PatchMatch iterations (both views, both colours each)
+  int iterations = 0;  // PatchMatch iterations (both views, both parities each)
   SearchSchedule schedule;
   // The spatial and random search are steered by the coarser level's left/right
   // confidence.

@@ -48,8 +48,6 @@ void StereoParams::check() const {
           "must be in 0..50");
   require(refill_iterations >= 0 && refill_iterations <= 10, "refill-iterations",
           "must be in 0..10");
-  require(refill_unsure_only == 0 || refill_unsure_only == 1, "refill-unsure-only",
-          "must be 0 or 1");
   require(std::isfinite(min_search_range) && min_search_range > 0, "min-search-range",
           "must be positive");
   require(std::isfinite(fine_search_range) && fine_search_range > 0, "fine-search-range",
@@ -63,13 +61,9 @@ void StereoParams::check() const {
           "confident-spatial-candidates",
           "must be in 0.." + std::to_string(PMS_SPATIAL_CANDIDATES) + ", got " +
               std::to_string(confident_spatial_candidates));
-  require(refresh_confidence == 0 || refresh_confidence == 1, "refresh-confidence",
-          "must be 0 or 1");
   require(std::isfinite(max_normal_delta) && max_normal_delta >= 0 && max_normal_delta <= 2,
           "max-normal-delta", "must be in [0, 2]");
   require(coarsest_width >= 8, "coarsest-width", "must be at least 8");
-  require(pyramid_factor == 2, "pyramid-factor", "only 2 is supported (exact plane carrying)");
-  require(fill_coarse == 0 || fill_coarse == 1, "fill-coarse", "must be 0 or 1");
   require(std::isfinite(lr_tolerance) && lr_tolerance >= 0, "lr-tolerance", "must be >= 0");
   require(!std::isnan(fill_max_extrapolation) && fill_max_extrapolation >= 0,
           "fill-max-extrapolation", "must be >= 0 (inf: no limit)");

@@ -60,7 +60,7 @@ struct StereoParams {
   // weights (mean of seeds 1-4); 30 and 50 px gain less. gamma is Bleyer et al.'s.
   float gamma = 10.0f;
   float gamma_distance = 20.0f;
-  // PatchMatch iterations (each: both views, both checkerboard colours) of flat PMS, on
+  // PatchMatch iterations (each: both views, both checkerboard parities) of flat PMS, on
   // its only level (Bleyer et al. use 3).
   int iterations = 3;
   // PPMS: iterations on the coarsest level (at most coarsest_width pixels wide, so they
@@ -95,10 +95,10 @@ struct StereoParams {
   // PPMS: below the coarsest level, after every iteration but the last, the confidence
   // is recomputed from the level's own planes (the same left/right rule), so that the
   // next iteration spends its far candidates and wide trials on the pixels that are still
-  // inconsistent, not on those the carried confidence doubted (1 = on). It gains about
+  // inconsistent, not on those the carried confidence doubted. It gains about
   // 0.1 point at no cost in time: about as many pixels are confident after an iteration
   // as before it.
-  int refresh_confidence = 1;
+  bool refresh_confidence = true;
   // On the finest level, after its iterations: the pixels of both views that fail the
   // left/right check take the background plane (as with fill_coarse), and this many more
   // iterations run, steered by that check (the confidence rules above). The filled
@@ -108,21 +108,19 @@ struct StereoParams {
   // 0.2 points off; a second costs more than the first gains.
   int refill_iterations = 1;
   // Only the pixels that fail that check (confidence below confident_threshold) search in
-  // those iterations; the others keep their planes (1 = on; 0: every pixel, steered by
+  // those iterations; the others keep their planes (false: every pixel, steered by
   // the check). The failed pixels are what the iteration is for; the consistent ones,
   // about 83 % of Motorcycle's, would mostly polish their planes there, a sub-pixel
   // gain bad-2 does not see: 0.86x the time for at most 0.05 points.
-  int refill_unsure_only = 1;
+  bool refill_unsure_only = true;
   // Largest normal perturbation per component at the first trial (then halved).
   float max_normal_delta = 1.0f;
   // PPMS: the coarsest level is the first whose width is at most this.
   int coarsest_width = 128;
-  // Downsampling factor between pyramid levels (2 only, for exact plane carrying).
-  int pyramid_factor = 2;
   // PPMS: each coarser level's planes go through the left/right check and the background
   // filling before they are carried, so that the finer level starts its occluded pixels
-  // from the background plane instead of whatever PatchMatch left there (1 = on).
-  int fill_coarse = 1;
+  // from the background plane instead of whatever PatchMatch left there.
+  bool fill_coarse = true;
   // Left/right check tolerance in pixels.
   float lr_tolerance = 1.0f;
   // A pixel that fails the check takes its background neighbour's plane, but its

@@ -40,11 +40,11 @@ typedef struct {
    view == PMS_VIEW_LEFT ? -1.0f : 1.0f}
 
 /* Pixel of a work item of a checkerboard stage: the global size is (ceil(width / 2),
- * height) and item (i, y) handles x = 2 i + (y + colour) % 2, the reference's loop.
+ * height) and item (i, y) handles x = 2 i + (y + parity) % 2, the reference's loop.
  * Returns 0 for the items past the right edge (odd widths) or below the last row. */
-inline int pms_checker_pixel(int width, int height, int colour, int* x, int* y) {
+inline int pms_checker_pixel(int width, int height, int parity, int* x, int* y) {
   *y = (int)get_global_id(1);
-  *x = 2 * (int)get_global_id(0) + ((*y + colour) & 1);
+  *x = 2 * (int)get_global_id(0) + ((*y + parity) & 1);
   return *x < width && *y < height;
 }
 
@@ -183,12 +183,12 @@ typedef struct {
 } PmsLanes;
 
 /* Lanes of a checkerboard item: the global size is (ceil(ceil(width / 2) / PMS_LANES),
- * height); item (i, y) handles x = 2 (PMS_LANES i + lane) + (y + colour) % 2.
+ * height); item (i, y) handles x = 2 (PMS_LANES i + lane) + (y + parity) % 2.
  * Returns 0 when no lane has a pixel. */
-inline int pms_checker_lanes(int width, int height, int colour, PmsLanes* lanes, int* y) {
+inline int pms_checker_lanes(int width, int height, int parity, PmsLanes* lanes, int* y) {
   *y = (int)get_global_id(1);
   if (*y >= height) return 0;
-  int first = 2 * PMS_LANES * (int)get_global_id(0) + ((*y + colour) & 1);
+  int first = 2 * PMS_LANES * (int)get_global_id(0) + ((*y + parity) & 1);
   if (first >= width) return 0;
   lanes->first = first;
   lanes->stride = 2;
@@ -238,12 +238,12 @@ inline int pms_listed_lanes(const __global int* list, const __global int* counts
   return 1;
 }
 
-/* The lanes of a checkerboard stage: the whole colour when `list` is NULL, otherwise the
- * listed pixels of the colour. */
-inline int pms_stage_lanes(int width, int height, int colour, const __global int* list,
+/* The lanes of a checkerboard stage: the whole parity when `list` is NULL, otherwise the
+ * listed pixels of the parity. */
+inline int pms_stage_lanes(int width, int height, int parity, const __global int* list,
                            const __global int* counts, int list_stride, PmsLanes* lanes,
                            int* y) {
-  if (list == 0) return pms_checker_lanes(width, height, colour, lanes, y);
+  if (list == 0) return pms_checker_lanes(width, height, parity, lanes, y);
   return pms_listed_lanes(list, counts, list_stride, height, lanes, y);
 }
 

@@ -156,9 +156,9 @@ FS_INLINE int pms_perturb_plane(const float* abc, int x, int y, float max_dispar
   return 1;
 }
 
-/* Spatial propagation candidates of a red-black schedule: the 4-neighbours at
+/* Spatial propagation candidates of a checkerboard schedule: the 4-neighbours at
  * distances 1, 5, 15 and 45, nearest first. Odd distances keep every candidate on the
- * other colour. Through the neighbours at 1 and 5 px a plane travels at most five pixels
+ * other parity. Through the neighbours at 1 and 5 px a plane travels at most five pixels
  * per half-step; the far ones let good planes cross a textureless wall or an occluded
  * band in a few half-steps, and offer each pixel planes from other parts of its surface
  * (Pipes, Jadeplant and PianoL gain most). The far rings take about 0.6 points off

@@ -1,25 +1,25 @@
-/* Pixels of one checkerboard colour try the planes of their spatial candidates
- * first_candidate .. end_candidate - 1, which all have the other colour and so are not
+/* Pixels of one checkerboard parity try the planes of their spatial candidates
+ * first_candidate .. end_candidate - 1, which all have the other parity and so are not
  * written by this launch (reference: propagate_spatial, whose confidence rule the host
- * applies by launching the near candidates for every pixel of the colour, `list` NULL,
+ * applies by launching the near candidates for every pixel of the parity, `list` NULL,
  * then the far ones for the unsure pixels of list_unsure_pixels). Each work item handles
  * PMS_LANES pixels of a row and evaluates their candidates together (pms_cost_lanes_group). */
 #include "pms_kernel_support.h"
 
-__kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int colour, int first_candidate,
+__kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int parity, int first_candidate,
                                 int end_candidate, const __global int* list,
                                 const __global int* list_counts, int list_stride,
                                 __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
     return;
   }
   PmsCostInputs in = PMS_COST_INPUTS();
   PmsBestPlane best[PMS_LANES];
   for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
   /* PMS_SPATIAL_GROUP candidates per window pass: their planes are the neighbours'
-   * (of the other colour, unchanged by this launch), not derived from the best one, so
+   * (of the other parity, unchanged by this launch), not derived from the best one, so
    * they can be costed together (pms_group_offer). */
   for (int group = first_candidate; group < end_candidate; group += PMS_SPATIAL_GROUP) {
     PmsCandidateBatch batches[PMS_SPATIAL_GROUP];

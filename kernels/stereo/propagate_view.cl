@@ -1,17 +1,17 @@
-/* Pixels of one checkerboard colour try the plane of the pixel they match in the other
+/* Pixels of one checkerboard parity try the plane of the pixel they match in the other
  * view, re-expressed in this view (reference: propagate_view). Each work item handles
- * PMS_LANES pixels of a row and evaluates them together: the whole colour when `list` is
+ * PMS_LANES pixels of a row and evaluates them together: the whole parity when `list` is
  * NULL, otherwise the listed (unsure) pixels of list_unsure_pixels, the reference's
  * schedule.unsure_only. */
 #include "pms_kernel_support.h"
 
-__kernel void propagate_view(PMS_COST_KERNEL_ARGS, int colour,
+__kernel void propagate_view(PMS_COST_KERNEL_ARGS, int parity,
                              const __global float* other_planes, const __global int* list,
                              const __global int* list_counts, int list_stride,
                              __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
     return;
   }
   PmsCostInputs in = PMS_COST_INPUTS();

@@ -1,19 +1,19 @@
-/* Pixels of one checkerboard colour try random perturbations of their plane with
+/* Pixels of one checkerboard parity try random perturbations of their plane with
  * halving ranges, trials first_trial .. end_trial - 1 of the schedule (reference:
  * refine_random, whose confidence rule the host applies by launching the wide trials for
  * the unsure pixels of list_unsure_pixels, then the others for every pixel of the
- * colour, `list` NULL). Each work item handles PMS_LANES pixels of a row and evaluates
+ * parity, `list` NULL). Each work item handles PMS_LANES pixels of a row and evaluates
  * their trials together (pms_batch_offer). */
 #include "pms_kernel_support.h"
 
-__kernel void refine_random(PMS_COST_KERNEL_ARGS, int colour, uint seed, uint iteration,
+__kernel void refine_random(PMS_COST_KERNEL_ARGS, int parity, uint seed, uint iteration,
                             float max_disparity, float initial_range, float normal_range,
                             int first_trial, int end_trial, const __global int* list,
                             const __global int* list_counts, int list_stride,
                             __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, colour, list, list_counts, list_stride, &lanes, &y)) {
+  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
     return;
   }
   PmsCostInputs in = PMS_COST_INPUTS();

@@ -161,7 +161,7 @@ def main():
             "profiling events; reference time: the wall clock of the reference function on "
             "every core. Uploads and the resetting of inputs between iterations count in "
             "neither.",
-            "- Checkerboard stages (propagate_*, refine_random) run both colours of one "
+            "- Checkerboard stages (propagate_*, refine_random) run both parities of one "
             "view, so every pixel once. Inputs are those of the byte-for-byte tests "
             "(tests/stereo/kernel_cases.h).",
             "- evals/s: plane-candidate cost evaluations per second (nominal candidates). "

@@ -22,11 +22,11 @@ TEST(PlanLevel, OnlyTheCoarsestLevelStartsFromRandomPlanesAndUsesNoConfidence) {
 
 TEST(PlanLevel, EveryLevelButTheFinestIsCheckedAndFilledBeforeItsPlanesAreCarried) {
   StereoParams params;
-  params.fill_coarse = 1;
+  params.fill_coarse = true;
   EXPECT_TRUE(plan_level(params, 2, 3, 25, 20).fill_before_carry);
   EXPECT_TRUE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
   EXPECT_FALSE(plan_level(params, 0, 3, 100, 80).fill_before_carry);  // post-processing does it
-  params.fill_coarse = 0;
+  params.fill_coarse = false;
   EXPECT_FALSE(plan_level(params, 2, 3, 25, 20).fill_before_carry);
   EXPECT_FALSE(plan_level(params, 1, 3, 50, 40).fill_before_carry);
 }
@@ -60,7 +60,7 @@ TEST(PlanLevel, TheRefillSearchesTheUnsurePixelsOnlyByDefault) {
   const LevelPlan pms = plan_level(params, 0, 1, 100, 80);
   EXPECT_FALSE(pms.use_confidence);
   EXPECT_TRUE(pms.refill_use_confidence);
-  params.refill_unsure_only = 0;  // every pixel, steered as the level's own iterations
+  params.refill_unsure_only = false;  // every pixel, steered as the level's own iterations
   const LevelPlan pms_all = plan_level(params, 0, 1, 100, 80);
   EXPECT_FALSE(pms_all.refill_schedule.unsure_only);
   EXPECT_FALSE(pms_all.refill_use_confidence);
@@ -105,13 +105,13 @@ TEST(PlanLevel, EveryLevelTakesTheConfidenceRules) {
 
 TEST(PlanLevel, OnlyLevelsThatUseAConfidenceRefreshIt) {
   StereoParams params;
-  params.refresh_confidence = 1;
+  params.refresh_confidence = true;
   EXPECT_FALSE(plan_level(params, 2, 3, 25, 20).refresh_confidence);  // coarsest: none
   EXPECT_TRUE(plan_level(params, 1, 3, 50, 40).refresh_confidence);
   EXPECT_TRUE(plan_level(params, 0, 3, 100, 80).refresh_confidence);
-  params.refresh_confidence = 0;
+  params.refresh_confidence = false;
   EXPECT_FALSE(plan_level(params, 0, 3, 100, 80).refresh_confidence);
-  params.refresh_confidence = 1;
+  params.refresh_confidence = true;
   params.method = StereoMethod::PMS;
   EXPECT_FALSE(plan_level(params, 0, 1, 100, 80).refresh_confidence);
 }

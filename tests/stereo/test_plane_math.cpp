@@ -89,7 +89,7 @@ TEST(PlaneMath, PerturbationClampsToTheDisparityRange) {
   EXPECT_FLOAT_EQ(pms_plane_disparity(out[0], out[1], out[2], 0, 0), 63.0f);
 }
 
-TEST(PlaneMath, SpatialCandidatesAreOnTheOtherColour) {
+TEST(PlaneMath, SpatialCandidatesAreOnTheOtherParity) {
   for (int c = 0; c < PMS_SPATIAL_CANDIDATES; ++c) {
     int dx = 0, dy = 0;
     pms_spatial_offset(c, &dx, &dy);

@@ -25,10 +25,10 @@ TEST(SpatialConfidenceRule, PixelsBelowTheThresholdTryEveryCandidate) {
   schedule.confident_spatial_candidates = 0;
   const std::vector<float> confidence(without.fields[0].pixels(),
                                       schedule.confident_threshold * 0.99f);
-  for (int colour = 0; colour < 2; ++colour) {
-    propagate_spatial(without.in, PMS_VIEW_LEFT, colour, schedule, nullptr,
+  for (int parity = 0; parity < 2; ++parity) {
+    propagate_spatial(without.in, PMS_VIEW_LEFT, parity, schedule, nullptr,
                       without.fields[PMS_VIEW_LEFT]);
-    propagate_spatial(unsure.in, PMS_VIEW_LEFT, colour, schedule, &confidence,
+    propagate_spatial(unsure.in, PMS_VIEW_LEFT, parity, schedule, &confidence,
                       unsure.fields[PMS_VIEW_LEFT]);
   }
   EXPECT_EQ(without.fields[PMS_VIEW_LEFT].planes, unsure.fields[PMS_VIEW_LEFT].planes);
@@ -41,8 +41,8 @@ TEST(SpatialConfidenceRule, ConfidentPixelsWithNoCandidatesKeepTheirPlanes) {
   schedule.confident_spatial_candidates = 0;
   const std::vector<float> confidence(f.fields[0].pixels(), schedule.confident_threshold);
   const PlaneField before = f.fields[PMS_VIEW_LEFT];
-  for (int colour = 0; colour < 2; ++colour) {
-    propagate_spatial(f.in, PMS_VIEW_LEFT, colour, schedule, &confidence,
+  for (int parity = 0; parity < 2; ++parity) {
+    propagate_spatial(f.in, PMS_VIEW_LEFT, parity, schedule, &confidence,
                       f.fields[PMS_VIEW_LEFT]);
   }
   EXPECT_EQ(before.planes, f.fields[PMS_VIEW_LEFT].planes);
@@ -50,7 +50,7 @@ TEST(SpatialConfidenceRule, ConfidentPixelsWithNoCandidatesKeepTheirPlanes) {
 }
 
 // With the first ring only, a confident pixel that changed took the plane of one of its
-// four direct neighbours (one colour, so the neighbours are not written meanwhile);
+// four direct neighbours (one parity, so the neighbours are not written meanwhile);
 // unsure pixels also reach farther, which the test checks too, so that it cannot pass
 // on a field where nothing moved.
 TEST(SpatialConfidenceRule, ConfidentPixelsTakePlanesOnlyFromTheNearestRing) {
@@ -70,7 +70,7 @@ TEST(SpatialConfidenceRule, ConfidentPixelsTakePlanesOnlyFromTheNearestRing) {
   int confident_changed = 0;
   int unsure_from_far = 0;
   for (int y = 0; y < height; ++y) {
-    for (int x = (y & 1); x < width; x += 2) {  // colour 0: (x + y) even
+    for (int x = (y & 1); x < width; x += 2) {  // parity 0: (x + y) even
       const float* now = &field.planes[4 * (y * width + x)];
       if (same_plane(now, &before.planes[4 * (y * width + x)])) continue;
       bool from_ring_one = false;

@@ -56,7 +56,7 @@ TEST_P(SlantedPlane, RecoversTheDisparityWithinHalfAPixel) {
   StereoResult result = run_stereo(pair.left, pair.right, params);
   EXPECT_GE(share_within_half_pixel(result.disparity, pair.disparity), 0.95);
   if (GetParam() == StereoMethod::PPMS) {
-    // The pyramid converges before post-processing; flat PMS with its three red-black
+    // The pyramid converges before post-processing; flat PMS with its three checkerboard
     // iterations reaches about 89 % raw and needs the weighted median to pass.
     EXPECT_GE(share_within_half_pixel(result.raw_left, pair.disparity), 0.95);
   }

@@ -79,12 +79,12 @@ TEST_P(PatchMatchStage, PropagateSpatialWithoutConfidence) {
   LevelFixture f(GetParam());
   const SearchSchedule schedule = search_schedule(f.in.ndisp);
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const PlaneField before = f.fields[view];
-      propagate_spatial(f.in, view, colour, schedule, nullptr, f.fields[view]);
+      propagate_spatial(f.in, view, parity, schedule, nullptr, f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().propagate_spatial(f.device_in, view, colour, schedule, nullptr, field);
+      stages().propagate_spatial(f.device_in, view, parity, schedule, nullptr, field);
       expect_same_field(f.fields[view], field);
     }
   }
@@ -101,12 +101,12 @@ TEST_P(PatchMatchStage, PropagateSpatialWithConfidence) {
       random_confidence(f.fields[0].pixels(), GetParam().seed);
   const Buffer<float> device_confidence = guarded(confidence, "confidence");
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const PlaneField before = f.fields[view];
-      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
+      propagate_spatial(f.in, view, parity, schedule, &confidence, f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().propagate_spatial(f.device_in, view, colour, schedule, &device_confidence,
+      stages().propagate_spatial(f.device_in, view, parity, schedule, &device_confidence,
                                  field);
       expect_same_field(f.fields[view], field);
     }
@@ -117,14 +117,14 @@ TEST_P(PatchMatchStage, PropagateView) {
   LevelFixture f(GetParam());
   advance(f);
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const DeviceField other = upload(f.fields[1 - view], "other field");
       const PlaneField before = f.fields[view];
-      propagate_view(f.in, view, colour, SearchSchedule{}, nullptr, f.fields[1 - view],
+      propagate_view(f.in, view, parity, SearchSchedule{}, nullptr, f.fields[1 - view],
                      f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().propagate_view(f.device_in, view, colour, SearchSchedule{}, nullptr, other,
+      stages().propagate_view(f.device_in, view, parity, SearchSchedule{}, nullptr, other,
                               field);
       expect_same_field(f.fields[view], field);
       EXPECT_TRUE(same_buffer(f.fields[1 - view].planes, other.planes)) << "input changed";
@@ -143,14 +143,14 @@ TEST_P(PatchMatchStage, UnsurePixelsOnly) {
       random_confidence(f.fields[0].pixels(), GetParam().seed);
   const Buffer<float> device_confidence = guarded(confidence, "confidence");
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const DeviceField other = upload(f.fields[1 - view], "other field");
       const PlaneField before = f.fields[view];
-      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
-      propagate_view(f.in, view, colour, schedule, &confidence, f.fields[1 - view],
+      propagate_spatial(f.in, view, parity, schedule, &confidence, f.fields[view]);
+      propagate_view(f.in, view, parity, schedule, &confidence, f.fields[1 - view],
                      f.fields[view]);
-      refine_random(f.in, view, colour, 9, schedule, &confidence, f.fields[view]);
+      refine_random(f.in, view, parity, 9, schedule, &confidence, f.fields[view]);
       expect_some_change(before, f.fields[view]);
       for (size_t i = 0; i < confidence.size(); ++i) {
         if (!pms_is_confident(confidence[i], schedule.confident_threshold)) continue;
@@ -158,11 +158,11 @@ TEST_P(PatchMatchStage, UnsurePixelsOnly) {
                                  4 * sizeof(float)))
             << "confident pixel " << i << " changed its plane";
       }
-      stages().propagate_spatial(f.device_in, view, colour, schedule, &device_confidence,
+      stages().propagate_spatial(f.device_in, view, parity, schedule, &device_confidence,
                                  field);
-      stages().propagate_view(f.device_in, view, colour, schedule, &device_confidence, other,
+      stages().propagate_view(f.device_in, view, parity, schedule, &device_confidence, other,
                               field);
-      stages().refine_random(f.device_in, view, colour, 9, schedule, &device_confidence, field);
+      stages().refine_random(f.device_in, view, parity, 9, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
     }
   }
@@ -173,12 +173,12 @@ TEST_P(PatchMatchStage, RefineRandomWithoutConfidence) {
   advance(f);
   const SearchSchedule schedule = search_schedule(f.in.ndisp);
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const PlaneField before = f.fields[view];
-      refine_random(f.in, view, colour, 5, schedule, nullptr, f.fields[view]);
+      refine_random(f.in, view, parity, 5, schedule, nullptr, f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().refine_random(f.device_in, view, colour, 5, schedule, nullptr, field);
+      stages().refine_random(f.device_in, view, parity, 5, schedule, nullptr, field);
       expect_same_field(f.fields[view], field);
     }
   }
@@ -192,12 +192,12 @@ TEST_P(PatchMatchStage, RefineRandomWithConfidence) {
       random_confidence(f.fields[0].pixels(), GetParam().seed);
   const Buffer<float> device_confidence = guarded(confidence, "confidence");
   for (int view = 0; view < 2; ++view) {
-    for (int colour = 0; colour < 2; ++colour) {
+    for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const PlaneField before = f.fields[view];
-      refine_random(f.in, view, colour, 70, schedule, &confidence, f.fields[view]);
+      refine_random(f.in, view, parity, 70, schedule, &confidence, f.fields[view]);
       expect_some_change(before, f.fields[view]);
-      stages().refine_random(f.device_in, view, colour, 70, schedule, &device_confidence, field);
+      stages().refine_random(f.device_in, view, parity, 70, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
     }
   }
@@ -303,34 +303,34 @@ TEST_P(CostLanes, EveryCostStageMatchesTheReference) {
     evaluate_costs(f.in, view, f.fields[view]);
     lanes.evaluate_costs(f.device_in, view, field);
     expect_same_field(f.fields[view], field);
-    for (int colour = 0; colour < 2; ++colour) {
-      propagate_spatial(f.in, view, colour, schedule, &confidence, f.fields[view]);
-      lanes.propagate_spatial(f.device_in, view, colour, schedule, &device_confidence, field);
+    for (int parity = 0; parity < 2; ++parity) {
+      propagate_spatial(f.in, view, parity, schedule, &confidence, f.fields[view]);
+      lanes.propagate_spatial(f.device_in, view, parity, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
       const DeviceField other = upload(f.fields[1 - view], "other field");
-      propagate_view(f.in, view, colour, SearchSchedule{}, nullptr, f.fields[1 - view],
+      propagate_view(f.in, view, parity, SearchSchedule{}, nullptr, f.fields[1 - view],
                      f.fields[view]);
-      lanes.propagate_view(f.device_in, view, colour, SearchSchedule{}, nullptr, other,
+      lanes.propagate_view(f.device_in, view, parity, SearchSchedule{}, nullptr, other,
                            field);
       expect_same_field(f.fields[view], field);
-      refine_random(f.in, view, colour, 9, schedule, &confidence, f.fields[view]);
-      lanes.refine_random(f.device_in, view, colour, 9, schedule, &device_confidence, field);
+      refine_random(f.in, view, parity, 9, schedule, &confidence, f.fields[view]);
+      lanes.refine_random(f.device_in, view, parity, 9, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
     }
     // The refill iteration's listed launches: the unsure pixels only.
     SearchSchedule unsure_only = schedule;
     unsure_only.unsure_only = true;
-    for (int colour = 0; colour < 2; ++colour) {
-      propagate_spatial(f.in, view, colour, unsure_only, &confidence, f.fields[view]);
-      lanes.propagate_spatial(f.device_in, view, colour, unsure_only, &device_confidence,
+    for (int parity = 0; parity < 2; ++parity) {
+      propagate_spatial(f.in, view, parity, unsure_only, &confidence, f.fields[view]);
+      lanes.propagate_spatial(f.device_in, view, parity, unsure_only, &device_confidence,
                               field);
       const DeviceField other = upload(f.fields[1 - view], "other field");
-      propagate_view(f.in, view, colour, unsure_only, &confidence, f.fields[1 - view],
+      propagate_view(f.in, view, parity, unsure_only, &confidence, f.fields[1 - view],
                      f.fields[view]);
-      lanes.propagate_view(f.device_in, view, colour, unsure_only, &device_confidence, other,
+      lanes.propagate_view(f.device_in, view, parity, unsure_only, &device_confidence, other,
                            field);
-      refine_random(f.in, view, colour, 10, unsure_only, &confidence, f.fields[view]);
-      lanes.refine_random(f.device_in, view, colour, 10, unsure_only, &device_confidence,
+      refine_random(f.in, view, parity, 10, unsure_only, &confidence, f.fields[view]);
+      lanes.refine_random(f.device_in, view, parity, 10, unsure_only, &device_confidence,
                           field);
       expect_same_field(f.fields[view], field);
     }
@@ -370,11 +370,11 @@ TEST_P(SpatialGroup, PropagateSpatialMatchesTheReference) {
     schedule.confident_spatial_candidates = near;
     for (int view = 0; view < 2; ++view) {
       DeviceField field = upload(f.fields[view], "field");
-      for (int colour = 0; colour < 2; ++colour) {
-        const bool with_confidence = colour == 1;
-        propagate_spatial(f.in, view, colour, schedule, with_confidence ? &confidence : nullptr,
+      for (int parity = 0; parity < 2; ++parity) {
+        const bool with_confidence = parity == 1;
+        propagate_spatial(f.in, view, parity, schedule, with_confidence ? &confidence : nullptr,
                           f.fields[view]);
-        grouped.propagate_spatial(f.device_in, view, colour, schedule,
+        grouped.propagate_spatial(f.device_in, view, parity, schedule,
                                   with_confidence ? &device_confidence : nullptr, field);
         expect_same_field(f.fields[view], field);
       }

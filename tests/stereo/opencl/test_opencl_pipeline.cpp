@@ -61,7 +61,7 @@ std::vector<PipelineCase> pipeline_cases() {
   add("pms_w11", crop_params(StereoMethod::PMS));
   add("ppms_default_windows", crop_params(StereoMethod::PPMS, 35, 48));
   add("ppms_w11_no_coarse_fill_every_vote", ppms([](StereoParams& p) {
-        p.fill_coarse = 0;
+        p.fill_coarse = false;
         p.median_background_margin = INFINITY;
       }));
   add("ppms_w11_plain_extrapolation",
@@ -69,7 +69,7 @@ std::vector<PipelineCase> pipeline_cases() {
   add("ppms_w11_one_window_step", ppms([](StereoParams& p) { p.window_step_fine = 2; }));
   add("ppms_w11_fine_step_3", ppms([](StereoParams& p) { p.window_step_fine = 3; }));
   add("ppms_w11_carried_confidence_only",
-      ppms([](StereoParams& p) { p.refresh_confidence = 0; }));
+      ppms([](StereoParams& p) { p.refresh_confidence = false; }));
   add("ppms_w11_three_fine_iterations", ppms([](StereoParams& p) { p.iterations_fine = 3; }));
   add("ppms_w11_no_speckle_refill", ppms([](StereoParams& p) {
         p.speckle_size = 0;
@@ -85,7 +85,7 @@ std::vector<PipelineCase> pipeline_cases() {
       }));
   add("ppms_w11_no_refill", ppms([](StereoParams& p) { p.refill_iterations = 0; }));
   add("ppms_w11_two_refills_no_refresh", ppms([](StereoParams& p) {
-        p.refresh_confidence = 0;
+        p.refresh_confidence = false;
         p.refill_iterations = 2;
       }));
   add("pms_w11_no_refill", pms([](StereoParams& p) { p.refill_iterations = 0; }));
@@ -93,8 +93,8 @@ std::vector<PipelineCase> pipeline_cases() {
         p.window_step_finest = 5;
         p.iterations_finest = 1;
       }));
-  add("ppms_w11_refill_every_pixel", ppms([](StereoParams& p) { p.refill_unsure_only = 0; }));
-  add("pms_w11_refill_every_pixel", pms([](StereoParams& p) { p.refill_unsure_only = 0; }));
+  add("ppms_w11_refill_every_pixel", ppms([](StereoParams& p) { p.refill_unsure_only = false; }));
+  add("pms_w11_refill_every_pixel", pms([](StereoParams& p) { p.refill_unsure_only = false; }));
   return cases;
 }
 
