@@ -4,7 +4,7 @@
 // so their rates are comparable and their ratio is the ratio of their times.
 //
 // The matching cost. Nearly all the time of the PatchMatch stages is pms_plane_cost
-// (kernels/stereo/pms_math.h; the OpenCL lanes of pms_kernel_support.h do the same operations
+// (kernels/stereo/pms_math.h; the OpenCL lanes of pms_lane_cost.h do the same operations
 // per lane). One window sample, i.e. one pass of its inner loop, costs:
 //   flops (add, sub, mul, abs, min, max, floor: 1 each; int/float conversions free)
 //      3  d = a*qx + row_term + c
@@ -28,7 +28,7 @@
 //      8  the census of the window pixel and of the nearest matched pixel
 //     76  in all
 //   (the OpenCL lanes read the other view's part, 44 of these bytes, as one 64-byte
-//   load of a match record, kernels/stereo/pms_kernel_support.h; the rates use the 76.)
+//   load of a match record, kernels/stereo/pms_lane_cost.h; the rates use the 76.)
 // Samples per window: offsets k*step in [-radius, radius] (the grid goes through 0),
 // so 2*(radius/step) + 1 per side, (2*(radius/step) + 1)^2 for an inner pixel (289 at
 // window 35 step 2, 121 at window 21), fewer near the border where window pixels

@@ -180,10 +180,9 @@ void refine_random(const LevelInputs& in, int view, int parity, std::uint32_t it
 
 void carry_planes_to_finer(const PlaneField& coarse, PlaneField& fine) {
   for (int y = 0; y < fine.height; ++y) {
-    int cy = std::min(y / 2, coarse.height - 1);
     for (int x = 0; x < fine.width; ++x) {
-      int cx = std::min(x / 2, coarse.width - 1);
-      pms_carry_plane_to_finer(&coarse.planes[4 * (static_cast<size_t>(cy) * coarse.width + cx)],
+      const size_t source = pms_coarse_pixel(x, y, coarse.width, coarse.height);
+      pms_carry_plane_to_finer(&coarse.planes[4 * source],
                                &fine.planes[4 * (static_cast<size_t>(y) * fine.width + x)]);
     }
   }
@@ -215,9 +214,8 @@ std::vector<float> upsample_nearest(const std::vector<float>& coarse, int coarse
                                     int coarse_height, int fine_width, int fine_height) {
   std::vector<float> fine(static_cast<size_t>(fine_width) * fine_height);
   for (int y = 0; y < fine_height; ++y) {
-    int cy = std::min(y / 2, coarse_height - 1);
     for (int x = 0; x < fine_width; ++x) {
-      fine[y * fine_width + x] = coarse[cy * coarse_width + std::min(x / 2, coarse_width - 1)];
+      fine[y * fine_width + x] = coarse[pms_coarse_pixel(x, y, coarse_width, coarse_height)];
     }
   }
   return fine;

@@ -251,6 +251,13 @@ bool take_flag(std::vector<std::string>& args, const std::string& name) {
   return false;
 }
 
+std::optional<int> usage_exit_code(std::vector<std::string>& args, void (*print_help)()) {
+  const bool help = take_flag(args, "--help") || take_flag(args, "-h");
+  if (!help && !args.empty()) return std::nullopt;
+  print_help();
+  return help ? 0 : 1;
+}
+
 void reject_unknown_options(const std::vector<std::string>& args) {
   for (const std::string& arg : args) {
     if (arg.size() > 1 && arg[0] == '-') throw InputError("option " + arg, "unknown option");

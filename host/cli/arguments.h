@@ -32,6 +32,10 @@ double take_number_option(std::vector<std::string>& args, const std::string& nam
 // Removes "--name" from args and returns whether it was there.
 bool take_flag(std::vector<std::string>& args, const std::string& name);
 
+// A command's exit code when it only prints its usage: 0 for --help or -h (taken out of
+// `args`), 1 for no arguments at all (a usage error); nullopt when the command runs.
+std::optional<int> usage_exit_code(std::vector<std::string>& args, void (*print_help)());
+
 // Throws InputError ("option --x: unknown option") if any token starts with "--".
 void reject_unknown_options(const std::vector<std::string>& args);
 

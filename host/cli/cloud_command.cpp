@@ -38,12 +38,7 @@ cv::Mat read_companion(const std::string& path, const cv::Mat& disparity, int ch
 }  // namespace
 
 int run_cloud_command(std::vector<std::string> args) {
-  // --help asks for the usage (exit 0); no arguments at all is a usage error (exit 1).
-  const bool help = take_flag(args, "--help") || take_flag(args, "-h");
-  if (help || args.empty()) {
-    print_help();
-    return help ? 0 : 1;
-  }
+  if (const std::optional<int> code = usage_exit_code(args, print_help)) return *code;
   std::string output = take_option(args, "-o");
   const std::string planes_path = take_option(args, "--planes");
   const std::string conf_path = take_option(args, "--conf");

@@ -166,12 +166,7 @@ void print_memory(size_t device_bytes, int width, int height) {
 }  // namespace
 
 int run_stereo_command(std::vector<std::string> args) {
-  // --help asks for the usage (exit 0); no arguments at all is a usage error (exit 1).
-  const bool help = take_flag(args, "--help") || take_flag(args, "-h");
-  if (help || args.empty()) {
-    print_help();
-    return help ? 0 : 1;
-  }
+  if (const std::optional<int> code = usage_exit_code(args, print_help)) return *code;
   StereoParams params;
   const std::optional<OpenCvMatcher> opencv = take_opencv_method(args);
   const bool ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();

@@ -16,7 +16,7 @@ namespace flexsight::opencl {
 
 class OpenClStages {
  public:
-  // Pixels per work item of the cost kernels (PMS_LANES of pms_kernel_support.h): they
+  // Pixels per work item of the cost kernels (PMS_LANES of pms_lanes.h): they
   // evaluate that many pixels' costs together in OpenCL vector types, which a CPU driver
   // compiles to SIMD code where it could not vectorise across work items. 1, 4, 8 or 16;
   // the result is the same bytes whatever the count (tested). 1 is for GPUs, which

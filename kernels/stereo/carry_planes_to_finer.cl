@@ -8,11 +8,9 @@ __kernel void carry_planes_to_finer(const __global float* coarse, int coarse_wid
                                     int fine_height) {
   int x, y;
   if (!pms_dense_pixel(fine_width, fine_height, &x, &y)) return;
-  int cx = min(x / 2, coarse_width - 1);
-  int cy = min(y / 2, coarse_height - 1);
   float abc_coarse[3];
   float abc_fine[3];
-  pms_load_plane(coarse, cy * coarse_width + cx, abc_coarse);
+  pms_load_plane(coarse, pms_coarse_pixel(x, y, coarse_width, coarse_height), abc_coarse);
   pms_carry_plane_to_finer(abc_coarse, abc_fine);
   int index = y * fine_width + x;
   fine[4 * index] = abc_fine[0];

@@ -3,16 +3,14 @@
  * changed their planes (reference: evaluate_costs). Each work item handles PMS_LANES
  * consecutive pixels of a row (pms_dense_lanes); one whose pixels all kept their planes
  * costs nothing. */
-#include "pms_kernel_support.h"
+#include "pms_lane_cost.h"
 
 __kernel void evaluate_costs(PMS_COST_KERNEL_ARGS, const __global uchar* unchanged,
                              const __global float* planes, __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_dense_lanes(width, height, &lanes, &y)) return;
-  PmsCostInputs in = PMS_COST_INPUTS();
   PmsCandidateBatch batch;
-  batch.any = 0;
+  if (!pms_dense_batch_begin(width, height, &lanes, &y, &batch)) return;
   for (int l = 0; l < PMS_LANES; ++l) {
     const int index = y * width + lanes.x[l];
     float abc[3];
@@ -21,5 +19,6 @@ __kernel void evaluate_costs(PMS_COST_KERNEL_ARGS, const __global uchar* unchang
     pms_batch_set_unbounded(&batch, l, lanes.active[l] && changed, abc);
   }
   if (!batch.any) return;
+  PmsCostInputs in = PMS_COST_INPUTS();
   pms_batch_store_costs(&batch, &in, &lanes, y, width, cost);
 }

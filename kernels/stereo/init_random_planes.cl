@@ -2,17 +2,15 @@
  * (reference: init_random_planes). The fourth plane component is written as 0, the
  * value the reference's PlaneField::resize leaves there. Each work item handles
  * PMS_LANES consecutive pixels of a row (pms_dense_lanes). */
-#include "pms_kernel_support.h"
+#include "pms_lane_cost.h"
 
 __kernel void init_random_planes(PMS_COST_KERNEL_ARGS, uint seed, uint iteration,
                                  float max_disparity, __global float* planes,
                                  __global float* cost) {
   PmsLanes lanes;
   int y;
-  if (!pms_dense_lanes(width, height, &lanes, &y)) return;
-  PmsCostInputs in = PMS_COST_INPUTS();
   PmsCandidateBatch batch;
-  batch.any = 0;
+  if (!pms_dense_batch_begin(width, height, &lanes, &y, &batch)) return;
   for (int l = 0; l < PMS_LANES; ++l) {
     const int x = lanes.x[l];
     const int index = y * width + x;
@@ -26,5 +24,6 @@ __kernel void init_random_planes(PMS_COST_KERNEL_ARGS, uint seed, uint iteration
     }
     pms_batch_set_unbounded(&batch, l, lanes.active[l], abc);
   }
+  PmsCostInputs in = PMS_COST_INPUTS();
   pms_batch_store_costs(&batch, &in, &lanes, y, width, cost);
 }

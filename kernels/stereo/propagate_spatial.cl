@@ -4,20 +4,15 @@
  * applies by launching the near candidates for every pixel of the parity, `list` NULL,
  * then the far ones for the unsure pixels of list_unsure_pixels). Each work item handles
  * PMS_LANES pixels of a row and evaluates their candidates together (pms_cost_lanes_group). */
-#include "pms_kernel_support.h"
+#include "pms_lane_cost.h"
 
 __kernel void propagate_spatial(PMS_COST_KERNEL_ARGS, int parity, int first_candidate,
-                                int end_candidate, const __global int* list,
-                                const __global int* list_counts, int list_stride,
-                                __global float* planes, __global float* cost) {
+                                int end_candidate, PMS_SEARCH_STAGE_ARGS) {
+  PmsBestPlane best[PMS_LANES];
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
-    return;
-  }
+  if (!pms_search_begin(PMS_SEARCH_STAGE_INPUTS, &lanes, &y, best)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
-  PmsBestPlane best[PMS_LANES];
-  for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
   /* PMS_SPATIAL_GROUP candidates per window pass: their planes are the neighbours'
    * (of the other parity, unchanged by this launch), not derived from the best one, so
    * they can be costed together (pms_group_offer). */

@@ -3,25 +3,20 @@
  * PMS_LANES pixels of a row and evaluates them together: the whole parity when `list` is
  * NULL, otherwise the listed (unsure) pixels of list_unsure_pixels, the reference's
  * schedule.unsure_only. */
-#include "pms_kernel_support.h"
+#include "pms_lane_cost.h"
 
 __kernel void propagate_view(PMS_COST_KERNEL_ARGS, int parity,
-                             const __global float* other_planes, const __global int* list,
-                             const __global int* list_counts, int list_stride,
-                             __global float* planes, __global float* cost) {
+                             const __global float* other_planes, PMS_SEARCH_STAGE_ARGS) {
+  PmsBestPlane best[PMS_LANES];
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
-    return;
-  }
+  if (!pms_search_begin(PMS_SEARCH_STAGE_INPUTS, &lanes, &y, best)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
-  PmsBestPlane best[PMS_LANES];
   PmsCandidateBatch batch;
   batch.any = 0;
   for (int l = 0; l < PMS_LANES; ++l) {
-    const int x = lanes.x[l];
-    best[l] = pms_best_load(planes, cost, y * width + x);
     float candidate[3] = {0.0f, 0.0f, 0.0f};
+    const int x = lanes.x[l];
     int ok = lanes.active[l];
     if (ok) {
       float d = pms_plane_disparity(best[l].abc[0], best[l].abc[1], best[l].abc[2], (float)x,

@@ -4,21 +4,16 @@
  * the unsure pixels of list_unsure_pixels, then the others for every pixel of the
  * parity, `list` NULL). Each work item handles PMS_LANES pixels of a row and evaluates
  * their trials together (pms_batch_offer). */
-#include "pms_kernel_support.h"
+#include "pms_lane_cost.h"
 
 __kernel void refine_random(PMS_COST_KERNEL_ARGS, int parity, uint seed, uint iteration,
                             float max_disparity, float initial_range, float normal_range,
-                            int first_trial, int end_trial, const __global int* list,
-                            const __global int* list_counts, int list_stride,
-                            __global float* planes, __global float* cost) {
+                            int first_trial, int end_trial, PMS_SEARCH_STAGE_ARGS) {
+  PmsBestPlane best[PMS_LANES];
   PmsLanes lanes;
   int y;
-  if (!pms_stage_lanes(width, height, parity, list, list_counts, list_stride, &lanes, &y)) {
-    return;
-  }
+  if (!pms_search_begin(PMS_SEARCH_STAGE_INPUTS, &lanes, &y, best)) return;
   PmsCostInputs in = PMS_COST_INPUTS();
-  PmsBestPlane best[PMS_LANES];
-  for (int l = 0; l < PMS_LANES; ++l) best[l] = pms_best_load(planes, cost, y * width + lanes.x[l]);
   float range = initial_range;
   float trial_normal_range = normal_range;
   for (int trial = 0; trial < end_trial; ++trial, range *= 0.5f, trial_normal_range *= 0.5f) {

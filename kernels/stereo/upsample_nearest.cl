@@ -7,7 +7,5 @@ __kernel void upsample_nearest(const __global float* coarse, int coarse_width,
                                int fine_height) {
   int x, y;
   if (!pms_dense_pixel(fine_width, fine_height, &x, &y)) return;
-  int cx = min(x / 2, coarse_width - 1);
-  int cy = min(y / 2, coarse_height - 1);
-  fine[y * fine_width + x] = coarse[cy * coarse_width + cx];
+  fine[y * fine_width + x] = coarse[pms_coarse_pixel(x, y, coarse_width, coarse_height)];
 }

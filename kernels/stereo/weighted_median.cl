@@ -2,7 +2,7 @@
  * inconsistent pixels with the consistent ones voting (reference: weighted_median_filled),
  * and over every pixel (reference: weighted_median_all). */
 #include "postprocess_math.h"
-#include "pms_kernel_support.h"
+#include "pms_lanes.h"
 
 /* Private sample arrays: the host passes (2 (radius / step) + 1)^2 for the run's window,
  * so that a small window does not pay for the largest one. */
