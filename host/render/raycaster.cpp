@@ -1,0 +1,364 @@
+#include "host/render/raycaster.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "host/io/input_error.h"
+#include "host/render/embree_device.h"
+#include "host/render/raycaster_detail.h"
+#include "host/render/tiles.h"
+
+namespace flexsight {
+
+using render_detail::check_embree;
+using render_detail::embree_device;
+
+// ---------------------------------------------------------------- camera
+
+void PinholeCamera::check() const {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (width <= 0 || height <= 0) {
+    throw InputError("camera", "image size " + std::to_string(width) + "x" +
+                                   std::to_string(height) + " is not positive");
+  }
+  if (!positive(fx) || !positive(fy)) {
+    throw InputError("camera", "focal lengths fx = " + std::to_string(fx) +
+                                   ", fy = " + std::to_string(fy) + " must be positive");
+  }
+  if (!std::isfinite(cx) || !std::isfinite(cy)) {
+    throw InputError("camera", "principal point is not finite");
+  }
+}
+
+Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& p) const {
+  return {fx * p.x() / p.z() + cx, fy * p.y() / p.z() + cy};
+}
+
+// ---------------------------------------------------------------- scene
+
+struct Scene::Impl {
+  std::vector<std::shared_ptr<const Mesh>> meshes;
+  std::vector<RTCScene> mesh_scenes;
+  std::vector<Instance> instances;
+  std::vector<RTCGeometry> instance_geometries;  // Embree geometry id = instance id
+  RTCScene top = nullptr;
+  // Each instance alone in a scene of its own, with the same transform, for the amodal
+  // masks: the ray meets the part through the same float arithmetic as in `top`, so a
+  // pixel where the part is visible is always in its amodal mask.
+  std::vector<RTCScene> solo_scenes;
+  std::vector<RTCGeometry> solo_geometries;
+  bool dirty = true;
+
+  Impl() {
+    top = rtcNewScene(embree_device());
+    check_embree("creating the scene");
+    // Robust traversal: rays through a shared edge or vertex of two triangles hit one of
+    // them, never slip between (a plane of two triangles has no diagonal crack).
+    rtcSetSceneFlags(top, RTC_SCENE_FLAG_ROBUST);
+  }
+  ~Impl() {
+    for (RTCGeometry g : instance_geometries) rtcReleaseGeometry(g);
+    for (RTCGeometry g : solo_geometries) rtcReleaseGeometry(g);
+    for (RTCScene s : solo_scenes) rtcReleaseScene(s);
+    if (top != nullptr) rtcReleaseScene(top);
+    for (RTCScene s : mesh_scenes) rtcReleaseScene(s);
+  }
+
+  void set_transform(int id) {
+    const Pose& pose = instances[id].pose;
+    // Column-major 3x4: the three columns of R, then t.
+    float m[12];
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) m[3 * c + r] = static_cast<float>(pose.R(r, c));
+    for (int r = 0; r < 3; ++r) m[9 + r] = static_cast<float>(pose.t[r]);
+    for (RTCGeometry g : {instance_geometries[id], solo_geometries[id]}) {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m);
+      rtcCommitGeometry(g);
+    }
+    check_embree("setting an instance's pose");
+    dirty = true;
+  }
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+int Scene::add_mesh(std::shared_ptr<const Mesh> mesh) {
+  if (mesh == nullptr || mesh->triangles.empty()) {
+    throw std::invalid_argument("Scene::add_mesh: a mesh with triangles is needed");
+  }
+  const RTCDevice device = embree_device();
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  // A part's hierarchy is built once and traced for every image: the slower, better
+  // build pays for itself.
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+      mesh->positions.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+      mesh->triangles.size()));
+  if (vertices == nullptr || indices == nullptr) {
+    rtcReleaseGeometry(geometry);
+    rtcReleaseScene(scene);
+    check_embree("allocating a mesh's buffers");
+    throw std::runtime_error("Embree: allocating a mesh's buffers failed");
+  }
+  for (size_t i = 0; i < mesh->positions.size(); ++i)
+    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = mesh->positions[i][k];
+  for (size_t t = 0; t < mesh->triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) indices[3 * t + k] = mesh->triangles[t][k];
+  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(scene, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  try {
+    check_embree(("building the hierarchy of " + mesh->source).c_str());
+  } catch (...) {
+    rtcReleaseScene(scene);
+    throw;
+  }
+  impl_->meshes.push_back(std::move(mesh));
+  impl_->mesh_scenes.push_back(scene);
+  return static_cast<int>(impl_->meshes.size()) - 1;
+}
+
+int Scene::add_instance(int mesh, const Pose& pose, const Material& material) {
+  if (mesh < 0 || mesh >= mesh_count()) {
+    throw std::out_of_range("Scene::add_instance: no mesh " + std::to_string(mesh));
+  }
+  const int id = instance_count();
+  const RTCDevice device = embree_device();
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(geometry, impl_->mesh_scenes[mesh]);
+  rtcAttachGeometryByID(impl_->top, geometry, static_cast<unsigned>(id));
+  RTCScene solo = rtcNewScene(device);
+  rtcSetSceneFlags(solo, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry solo_geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(solo_geometry, impl_->mesh_scenes[mesh]);
+  rtcAttachGeometryByID(solo, solo_geometry, static_cast<unsigned>(id));
+  impl_->instances.push_back({mesh, pose, material});
+  impl_->instance_geometries.push_back(geometry);
+  impl_->solo_scenes.push_back(solo);
+  impl_->solo_geometries.push_back(solo_geometry);
+  check_embree("adding an instance");
+  impl_->set_transform(id);
+  return id;
+}
+
+void Scene::set_pose(int instance, const Pose& pose) {
+  if (instance < 0 || instance >= instance_count()) {
+    throw std::out_of_range("Scene::set_pose: no instance " + std::to_string(instance));
+  }
+  impl_->instances[instance].pose = pose;
+  impl_->set_transform(instance);
+}
+
+void Scene::set_material(int instance, const Material& material) {
+  if (instance < 0 || instance >= instance_count()) {
+    throw std::out_of_range("Scene::set_material: no instance " + std::to_string(instance));
+  }
+  impl_->instances[instance].material = material;
+}
+
+void Scene::commit() {
+  rtcCommitScene(impl_->top);
+  for (RTCScene solo : impl_->solo_scenes) rtcCommitScene(solo);
+  check_embree("building the scene's hierarchy");
+  impl_->dirty = false;
+}
+
+bool Scene::committed() const { return !impl_->dirty; }
+int Scene::mesh_count() const { return static_cast<int>(impl_->meshes.size()); }
+int Scene::instance_count() const { return static_cast<int>(impl_->instances.size()); }
+const Mesh& Scene::mesh(int index) const { return *impl_->meshes.at(index); }
+const Instance& Scene::instance(int id) const { return impl_->instances.at(id); }
+RTCScene Scene::embree_scene() const { return impl_->top; }
+RTCScene Scene::embree_mesh_scene(int mesh) const { return impl_->mesh_scenes.at(mesh); }
+RTCScene Scene::embree_instance_scene(int instance) const {
+  return impl_->solo_scenes.at(instance);
+}
+
+// ---------------------------------------------------------------- casting
+
+namespace render_detail {
+
+CameraRays::CameraRays(const PinholeCamera& camera) {
+  camera.check();
+  dx.resize(camera.width);
+  dy.resize(camera.height);
+  for (int u = 0; u < camera.width; ++u) dx[u] = static_cast<float>((u - camera.cx) / camera.fx);
+  for (int v = 0; v < camera.height; ++v) dy[v] = static_cast<float>((v - camera.cy) / camera.fy);
+}
+
+SceneView::SceneView(const Scene& scene) {
+  if (!scene.committed()) {
+    throw std::logic_error("ray casting needs Scene::commit() after the last change");
+  }
+  instances.reserve(scene.instance_count());
+  for (int i = 0; i < scene.instance_count(); ++i) {
+    const Instance& instance = scene.instance(i);
+    instances.push_back({&scene.mesh(instance.mesh), instance.pose.R.cast<float>()});
+  }
+}
+
+void init_ray(RTCRayHit& ray_hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
+  ray_hit.ray.org_x = origin.x();
+  ray_hit.ray.org_y = origin.y();
+  ray_hit.ray.org_z = origin.z();
+  ray_hit.ray.dir_x = direction.x();
+  ray_hit.ray.dir_y = direction.y();
+  ray_hit.ray.dir_z = direction.z();
+  ray_hit.ray.tnear = 0.0f;
+  ray_hit.ray.tfar = std::numeric_limits<float>::infinity();
+  ray_hit.ray.time = 0.0f;
+  ray_hit.ray.mask = 0xFFFFFFFFu;
+  ray_hit.ray.id = 0;
+  ray_hit.ray.flags = 0;
+  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  ray_hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+}  // namespace render_detail
+
+namespace {
+
+using render_detail::CameraRays;
+using render_detail::SceneView;
+
+cv::Mat zeros_like_image(const PinholeCamera& camera, int type) {
+  return cv::Mat::zeros(camera.height, camera.width, type);
+}
+
+// Fills pixel (x, y) of the images from a hit of instance `id` on its triangle `prim`
+// at barycentric (u, v) and parameter t along the camera ray `direction` (z = 1).
+void write_hit(const SceneView& view, RaycastImages& images, int x, int y, unsigned id,
+               unsigned prim, float u, float v, float t, const Eigen::Vector3f& direction) {
+  const SceneView::Entry& entry = view.instances[id];
+  const Mesh& mesh = *entry.mesh;
+  const Eigen::Vector3f* corner = &mesh.corner_normals[3 * size_t(prim)];
+  Eigen::Vector3f shading = entry.R * ((1.0f - u - v) * corner[0] + u * corner[1] + v * corner[2]);
+  Eigen::Vector3f geometric = entry.R * mesh.face_normals[prim];
+  const float shading_length = shading.norm();
+  shading = shading_length > 0.0f ? Eigen::Vector3f(shading / shading_length) : geometric;
+  if (geometric.dot(direction) > 0.0f) {  // the back of the triangle: two-sided surfaces
+    geometric = -geometric;
+    shading = -shading;
+  }
+  const Eigen::Vector3f point = t * direction;
+  images.depth.at<float>(y, x) = point.z();
+  images.instance.at<std::int32_t>(y, x) = static_cast<std::int32_t>(id);
+  images.normal.at<cv::Vec3f>(y, x) = {shading.x(), shading.y(), shading.z()};
+  images.geometric_normal.at<cv::Vec3f>(y, x) = {geometric.x(), geometric.y(), geometric.z()};
+  images.point.at<cv::Vec3f>(y, x) = {point.x(), point.y(), point.z()};
+}
+
+// The pixels whose centres can fall on `mesh` at `pose`: the box of its bounding box's
+// projected corners, one pixel wider against rounding; the whole image when a corner
+// is not in front of the camera.
+cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera& camera) {
+  const cv::Rect image(0, 0, camera.width, camera.height);
+  double lo_u = INFINITY, lo_v = INFINITY, hi_u = -INFINITY, hi_v = -INFINITY;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p =
+        pose.R * mesh.bounds.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner))
+                     .cast<double>() +
+        pose.t;
+    if (!(p.z() > 1e-6)) return image;
+    const Eigen::Vector2d uv = camera.project(p);
+    lo_u = std::min(lo_u, uv.x());
+    hi_u = std::max(hi_u, uv.x());
+    lo_v = std::min(lo_v, uv.y());
+    hi_v = std::max(hi_v, uv.y());
+  }
+  const double x0 = std::max(std::floor(lo_u) - 1.0, 0.0);
+  const double y0 = std::max(std::floor(lo_v) - 1.0, 0.0);
+  const double x1 = std::min(std::ceil(hi_u) + 2.0, double(camera.width));
+  const double y1 = std::min(std::ceil(hi_v) + 2.0, double(camera.height));
+  if (x1 <= x0 || y1 <= y0) return {};
+  return cv::Rect(int(x0), int(y0), int(x1 - x0), int(y1 - y0)) & image;
+}
+
+}  // namespace
+
+RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
+                      const RaycastOptions& options) {
+  const CameraRays rays(camera);
+  const SceneView view(scene);
+  RaycastImages images;
+  images.depth = zeros_like_image(camera, CV_32FC1);
+  images.instance = cv::Mat(camera.height, camera.width, CV_32SC1, cv::Scalar(-1));
+  images.normal = zeros_like_image(camera, CV_32FC3);
+  images.geometric_normal = zeros_like_image(camera, CV_32FC3);
+  images.point = zeros_like_image(camera, CV_32FC3);
+  const RTCScene top = scene.embree_scene();
+
+  render_detail::for_each_tile(
+      cv::Rect(0, 0, camera.width, camera.height), options.threads,
+      [&](int x0, int y0, int x1, int y1) {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            const Eigen::Vector3f direction(rays.dx[x], rays.dy[y], 1.0f);
+            RTCRayHit ray_hit;
+            render_detail::init_ray(ray_hit, Eigen::Vector3f::Zero(), direction);
+            rtcIntersect1(top, &context, &ray_hit);
+            if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+            write_hit(view, images, x, y, ray_hit.hit.instID[0], ray_hit.hit.primID,
+                      ray_hit.hit.u, ray_hit.hit.v, ray_hit.ray.tfar, direction);
+          }
+        }
+      });
+  return images;
+}
+
+std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camera,
+                                  const RaycastOptions& options) {
+  const CameraRays rays(camera);
+  if (!scene.committed()) {
+    throw std::logic_error("ray casting needs Scene::commit() after the last change");
+  }
+  std::vector<cv::Mat> masks;
+  for (int id = 0; id < scene.instance_count(); ++id) {
+    const Instance& instance = scene.instance(id);
+    const Mesh& mesh = scene.mesh(instance.mesh);
+    cv::Mat mask = zeros_like_image(camera, CV_8UC1);
+    const RTCScene alone = scene.embree_instance_scene(id);
+    render_detail::for_each_tile(
+        projected_area(mesh, instance.pose, camera), options.threads,
+        [&](int x0, int y0, int x1, int y1) {
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+              RTCRayHit ray_hit;
+              render_detail::init_ray(ray_hit, Eigen::Vector3f::Zero(),
+                                      Eigen::Vector3f(rays.dx[x], rays.dy[y], 1.0f));
+              rtcIntersect1(alone, &context, &ray_hit);
+              if (ray_hit.hit.geomID != RTC_INVALID_GEOMETRY_ID) mask.at<std::uint8_t>(y, x) = 255;
+            }
+          }
+        });
+    masks.push_back(mask);
+  }
+  return masks;
+}
+
+cv::Mat visible_mask(const RaycastImages& images, int instance) {
+  cv::Mat mask;
+  cv::compare(images.instance, cv::Scalar(instance), mask, cv::CMP_EQ);
+  return mask;
+}
+
+}  // namespace flexsight
