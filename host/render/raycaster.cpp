@@ -7,7 +7,6 @@
 
 #include "host/io/input_error.h"
 #include "host/render/embree_device.h"
-#include "host/render/raycaster_detail.h"
 #include "host/render/tiles.h"
 
 namespace flexsight {
@@ -188,51 +187,43 @@ RTCScene Scene::embree_instance_scene(int instance) const {
 
 // ---------------------------------------------------------------- casting
 
-namespace render_detail {
+namespace {
 
-CameraRays::CameraRays(const PinholeCamera& camera) {
-  camera.check();
-  dx.resize(camera.width);
-  dy.resize(camera.height);
-  for (int u = 0; u < camera.width; ++u) dx[u] = static_cast<float>((u - camera.cx) / camera.fx);
-  for (int v = 0; v < camera.height; ++v) dy[v] = static_cast<float>((v - camera.cy) / camera.fy);
-}
+// Ray direction of pixel (u, v): (dx[u], dy[v], 1), so that the hit parameter t is the
+// depth z itself.
+struct CameraRays {
+  explicit CameraRays(const PinholeCamera& camera) {
+    camera.check();
+    dx.resize(camera.width);
+    dy.resize(camera.height);
+    for (int u = 0; u < camera.width; ++u) dx[u] = static_cast<float>((u - camera.cx) / camera.fx);
+    for (int v = 0; v < camera.height; ++v) dy[v] = static_cast<float>((v - camera.cy) / camera.fy);
+  }
+  std::vector<float> dx, dy;
+};
 
-SceneView::SceneView(const Scene& scene) {
+void require_committed(const Scene& scene) {
   if (!scene.committed()) {
     throw std::logic_error("ray casting needs Scene::commit() after the last change");
   }
-  instances.reserve(scene.instance_count());
-  for (int i = 0; i < scene.instance_count(); ++i) {
-    const Instance& instance = scene.instance(i);
-    instances.push_back({&scene.mesh(instance.mesh), instance.pose.R.cast<float>()});
+}
+
+// Per instance, what a hit needs: its mesh and its rotation in float.
+struct SceneView {
+  struct Entry {
+    const Mesh* mesh;
+    Eigen::Matrix3f R;
+  };
+  explicit SceneView(const Scene& scene) {
+    require_committed(scene);
+    instances.reserve(scene.instance_count());
+    for (int i = 0; i < scene.instance_count(); ++i) {
+      const Instance& instance = scene.instance(i);
+      instances.push_back({&scene.mesh(instance.mesh), instance.pose.R.cast<float>()});
+    }
   }
-}
-
-void init_ray(RTCRayHit& ray_hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
-  ray_hit.ray.org_x = origin.x();
-  ray_hit.ray.org_y = origin.y();
-  ray_hit.ray.org_z = origin.z();
-  ray_hit.ray.dir_x = direction.x();
-  ray_hit.ray.dir_y = direction.y();
-  ray_hit.ray.dir_z = direction.z();
-  ray_hit.ray.tnear = 0.0f;
-  ray_hit.ray.tfar = std::numeric_limits<float>::infinity();
-  ray_hit.ray.time = 0.0f;
-  ray_hit.ray.mask = 0xFFFFFFFFu;
-  ray_hit.ray.id = 0;
-  ray_hit.ray.flags = 0;
-  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  ray_hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-}
-
-}  // namespace render_detail
-
-namespace {
-
-using render_detail::CameraRays;
-using render_detail::SceneView;
+  std::vector<Entry> instances;
+};
 
 cv::Mat zeros_like_image(const PinholeCamera& camera, int type) {
   return cv::Mat::zeros(camera.height, camera.width, type);
@@ -259,6 +250,48 @@ void write_hit(const SceneView& view, RaycastImages& images, int x, int y, unsig
   images.normal.at<cv::Vec3f>(y, x) = {shading.x(), shading.y(), shading.z()};
   images.geometric_normal.at<cv::Vec3f>(y, x) = {geometric.x(), geometric.y(), geometric.z()};
   images.point.at<cv::Vec3f>(y, x) = {point.x(), point.y(), point.z()};
+}
+
+// Casts the camera rays of pixels [x0, x1) x [y0, y1) through `scene` as 4x4 packets
+// (rtcIntersect16: on coherent primary rays about three times the rays per second of
+// rtcIntersect1, bench/render) and calls on_hit(x, y, instance, triangle, u, v, t) for
+// each pixel that meets a surface. A pixel's lane depends on its position in the tile
+// only, never on the threads.
+template <class OnHit>
+void cast_packets(RTCScene scene, const CameraRays& rays, int x0, int y0, int x1, int y1,
+                  const OnHit& on_hit) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[16];
+  for (int by = y0; by < y1; by += 4) {
+    for (int bx = x0; bx < x1; bx += 4) {
+      for (int k = 0; k < 16; ++k) {
+        const int x = bx + (k & 3), y = by + (k >> 2);
+        const bool inside = x < x1 && y < y1;
+        valid[k] = inside ? -1 : 0;
+        packet.ray.org_x[k] = packet.ray.org_y[k] = packet.ray.org_z[k] = 0.0f;
+        packet.ray.dir_x[k] = inside ? rays.dx[x] : 0.0f;
+        packet.ray.dir_y[k] = inside ? rays.dy[y] : 0.0f;
+        packet.ray.dir_z[k] = 1.0f;
+        packet.ray.tnear[k] = 0.0f;
+        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        packet.ray.time[k] = 0.0f;
+        packet.ray.mask[k] = 0xFFFFFFFFu;
+        packet.ray.id[k] = 0;
+        packet.ray.flags[k] = 0;
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect16(valid, scene, &context, &packet);
+      for (int k = 0; k < 16; ++k) {
+        if (valid[k] == 0 || packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+        on_hit(bx + (k & 3), by + (k >> 2), packet.hit.instID[0][k], packet.hit.primID[k],
+               packet.hit.u[k], packet.hit.v[k], packet.ray.tfar[k]);
+      }
+    }
+  }
 }
 
 // The pixels whose centres can fall on `mesh` at `pose`: the box of its bounding box's
@@ -304,20 +337,11 @@ RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
   render_detail::for_each_tile(
       cv::Rect(0, 0, camera.width, camera.height), options.threads,
       [&](int x0, int y0, int x1, int y1) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (int y = y0; y < y1; ++y) {
-          for (int x = x0; x < x1; ++x) {
-            const Eigen::Vector3f direction(rays.dx[x], rays.dy[y], 1.0f);
-            RTCRayHit ray_hit;
-            render_detail::init_ray(ray_hit, Eigen::Vector3f::Zero(), direction);
-            rtcIntersect1(top, &context, &ray_hit);
-            if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-            write_hit(view, images, x, y, ray_hit.hit.instID[0], ray_hit.hit.primID,
-                      ray_hit.hit.u, ray_hit.hit.v, ray_hit.ray.tfar, direction);
-          }
-        }
+        cast_packets(top, rays, x0, y0, x1, y1,
+                     [&](int x, int y, unsigned id, unsigned prim, float u, float v, float t) {
+                       write_hit(view, images, x, y, id, prim, u, v, t,
+                                 Eigen::Vector3f(rays.dx[x], rays.dy[y], 1.0f));
+                     });
       });
   return images;
 }
@@ -325,9 +349,7 @@ RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
 std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camera,
                                   const RaycastOptions& options) {
   const CameraRays rays(camera);
-  if (!scene.committed()) {
-    throw std::logic_error("ray casting needs Scene::commit() after the last change");
-  }
+  require_committed(scene);
   std::vector<cv::Mat> masks;
   for (int id = 0; id < scene.instance_count(); ++id) {
     const Instance& instance = scene.instance(id);
@@ -337,18 +359,10 @@ std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camer
     render_detail::for_each_tile(
         projected_area(mesh, instance.pose, camera), options.threads,
         [&](int x0, int y0, int x1, int y1) {
-          RTCIntersectContext context;
-          rtcInitIntersectContext(&context);
-          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-          for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-              RTCRayHit ray_hit;
-              render_detail::init_ray(ray_hit, Eigen::Vector3f::Zero(),
-                                      Eigen::Vector3f(rays.dx[x], rays.dy[y], 1.0f));
-              rtcIntersect1(alone, &context, &ray_hit);
-              if (ray_hit.hit.geomID != RTC_INVALID_GEOMETRY_ID) mask.at<std::uint8_t>(y, x) = 255;
-            }
-          }
+          cast_packets(alone, rays, x0, y0, x1, y1,
+                       [&](int x, int y, unsigned, unsigned, float, float, float) {
+                         mask.at<std::uint8_t>(y, x) = 255;
+                       });
         });
     masks.push_back(mask);
   }

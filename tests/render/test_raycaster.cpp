@@ -298,6 +298,15 @@ TEST(RaycastDeterminism, SameBytesWithOneAndManyThreads) {
       EXPECT_TRUE(same_mat_bytes(one[i], many[i])) << "output " << i << ", " << threads << " threads";
     }
   }
-  // Every part and the floor are in the picture.
-  for (int id = 0; id < 6; ++id) EXPECT_GT(cv::countNonZero(one[1] == id), 20) << "instance " << id;
+  // Every part and the floor are in the picture, each visible pixel within its amodal
+  // mask, and the parts that hide each other show less than their amodal masks.
+  int hidden = 0;
+  for (int id = 0; id < 6; ++id) {
+    const cv::Mat visible = one[1] == id;
+    const cv::Mat& amodal = one[6 + id];
+    EXPECT_GT(cv::countNonZero(visible), 20) << "instance " << id;
+    EXPECT_EQ(cv::countNonZero(visible & ~amodal), 0) << "instance " << id;
+    hidden += cv::countNonZero(amodal) - cv::countNonZero(visible);
+  }
+  EXPECT_GT(hidden, 100);
 }
