@@ -351,21 +351,19 @@ std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camer
   const CameraRays rays(camera);
   require_committed(scene);
   std::vector<cv::Mat> masks;
+  std::vector<cv::Rect> areas;
   for (int id = 0; id < scene.instance_count(); ++id) {
     const Instance& instance = scene.instance(id);
-    const Mesh& mesh = scene.mesh(instance.mesh);
-    cv::Mat mask = zeros_like_image(camera, CV_8UC1);
-    const RTCScene alone = scene.embree_instance_scene(id);
-    render_detail::for_each_tile(
-        projected_area(mesh, instance.pose, camera), options.threads,
-        [&](int x0, int y0, int x1, int y1) {
-          cast_packets(alone, rays, x0, y0, x1, y1,
-                       [&](int x, int y, unsigned, unsigned, float, float, float) {
-                         mask.at<std::uint8_t>(y, x) = 255;
-                       });
-        });
-    masks.push_back(mask);
+    masks.push_back(zeros_like_image(camera, CV_8UC1));
+    areas.push_back(projected_area(scene.mesh(instance.mesh), instance.pose, camera));
   }
+  render_detail::for_each_tile(areas, options.threads, [&](int id, int x0, int y0, int x1, int y1) {
+    cv::Mat& mask = masks[id];
+    cast_packets(scene.embree_instance_scene(id), rays, x0, y0, x1, y1,
+                 [&](int x, int y, unsigned, unsigned, float, float, float) {
+                   mask.at<std::uint8_t>(y, x) = 255;
+                 });
+  });
   return masks;
 }
 
