@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <functional>
 #include <numeric>
-#include <optional>
 #include <unordered_map>
 
 #include "host/io/input_error.h"

@@ -255,8 +255,8 @@ void write_hit(const SceneView& view, RaycastImages& images, int x, int y, unsig
 // Casts the camera rays of pixels [x0, x1) x [y0, y1) through `scene` as 4x4 packets
 // (rtcIntersect16: on coherent primary rays about three times the rays per second of
 // rtcIntersect1, bench/render) and calls on_hit(x, y, instance, triangle, u, v, t) for
-// each pixel that meets a surface. A pixel's lane depends on its position in the tile
-// only, never on the threads.
+// each pixel that meets a surface. A pixel's packet and lane depend on where it lies in
+// its tile, never on the threads.
 template <class OnHit>
 void cast_packets(RTCScene scene, const CameraRays& rays, int x0, int y0, int x1, int y1,
                   const OnHit& on_hit) {
