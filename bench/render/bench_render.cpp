@@ -30,7 +30,7 @@ std::string tless_path(const std::string& object) {
 // ray meets a part or the floor, as in a bin seen from above. The camera's focal length
 // is its width, so that both sizes see the same scene.
 struct BinScene {
-  Scene scene;
+  RenderScene scene;
   PinholeCamera camera;
   bool ok = true;
   std::string error;
@@ -45,7 +45,8 @@ struct BinScene {
       const char* objects[] = {"02", "05", "11", "19", "26", "30"};
       std::vector<int> meshes;
       for (const char* object : objects) {
-        meshes.push_back(scene.add_mesh(std::make_shared<const Mesh>(load_mesh(tless_path(object)))));
+        meshes.push_back(
+            scene.add_mesh(std::make_shared<const Mesh>(load_mesh(tless_path(object)))));
       }
       for (int i = 0; i < 12; ++i) {
         const fs_u32 h = fs_hash(0xB1A5U + fs_u32(i));
@@ -228,8 +229,8 @@ void BM_Render_Shade(benchmark::State& state) {
     benchmark::DoNotOptimize(rgb.data);
   }
   set_rates(state, bin.camera, "pixels/s");
-  state.SetLabel(std::to_string(bin.camera.width) + "x" + std::to_string(bin.camera.height) +
-                 ", " + std::to_string(threads_of(state)) + " thread(s), " +
+  state.SetLabel(std::to_string(bin.camera.width) + "x" + std::to_string(bin.camera.height) + ", " +
+                 std::to_string(threads_of(state)) + " thread(s), " +
                  (samples > 0 ? std::to_string(samples) + " shadow rays/pixel" : "hard shadows"));
 }
 
@@ -251,10 +252,22 @@ void sizes_and_threads(benchmark::internal::Benchmark* b) {
     for (int threads : {1, 0}) b->Args({size.first, size.second, threads});
 }
 
-BENCHMARK(BM_Render_Raycast)->Apply(sizes_and_threads)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_Render_RawEmbree1)->Apply(sizes_and_threads)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_Render_RawEmbree16)->Apply(sizes_and_threads)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_Render_AmodalMasks)->Apply(sizes_and_threads)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Render_Raycast)
+    ->Apply(sizes_and_threads)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Render_RawEmbree1)
+    ->Apply(sizes_and_threads)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Render_RawEmbree16)
+    ->Apply(sizes_and_threads)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Render_AmodalMasks)
+    ->Apply(sizes_and_threads)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_Render_Shade)
     ->Args({300, 300, 0, 0})
     ->Args({300, 300, 0, 8})

@@ -55,8 +55,8 @@ std::vector<double> parse_numbers(const std::string& option, const std::string& 
       if (used != item.size() || !std::isfinite(values.back())) throw std::invalid_argument(item);
     } catch (const std::exception&) {
       throw InputError("option " + option, "expected " + std::to_string(count) +
-                                               " numbers separated by '" + separator +
-                                               "', got '" + text + "'");
+                                               " numbers separated by '" + separator + "', got '" +
+                                               text + "'");
     }
   }
   if (values.size() != count) {
@@ -124,9 +124,9 @@ int run_render_command(std::vector<std::string> args) {
   camera.cy = (camera.height - 1) / 2.0;
   camera.check();
   if (distance_option < 0.0) throw InputError("option --distance", "must be positive");
-  const std::vector<double> degrees =
-      rotation_text.empty() ? std::vector<double>{30, -40, 0}
-                            : parse_numbers("--rotation", rotation_text, ',', 3);
+  const std::vector<double> degrees = rotation_text.empty()
+                                          ? std::vector<double>{30, -40, 0}
+                                          : parse_numbers("--rotation", rotation_text, ',', 3);
   shading.check();
   // Every output's folder is checked before the meshes are read.
   for (const std::string& path : {output, depth_path, mask_path}) {
@@ -152,7 +152,7 @@ int run_render_command(std::vector<std::string> args) {
        Eigen::AngleAxisd(degrees[0] * M_PI / 180.0, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
 
-  Scene scene;
+  RenderScene scene;
   for (size_t i = 0; i < meshes.size(); ++i) {
     Pose pose;
     pose.R = R;
@@ -166,11 +166,11 @@ int run_render_command(std::vector<std::string> args) {
   if (floor) {
     // A matte floor just behind the deepest part, wide enough to fill the view.
     const double floor_z = distance + spacing / 2.0;
-    const float half = static_cast<float>(
-        floor_z * std::max(camera.width / camera.fx, camera.height / camera.fy));
-    auto square = std::make_shared<const Mesh>(make_mesh(
-        "floor", {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
-        {{0, 1, 2}, {0, 2, 3}}));
+    const float half =
+        static_cast<float>(floor_z * std::max(camera.width / camera.fx, camera.height / camera.fy));
+    auto square = std::make_shared<const Mesh>(
+        make_mesh("floor", {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
+                  {{0, 1, 2}, {0, 2, 3}}));
     Pose pose;
     pose.t = {0.0, 0.0, floor_z};
     Material material;
@@ -199,8 +199,8 @@ int run_render_command(std::vector<std::string> args) {
     }
     write_image(mask_path, mask);
   }
-  std::cerr << "rendered " << meshes.size() << " part(s) at " << distance << " mm, "
-            << camera.width << "x" << camera.height << "\n";
+  std::cerr << "rendered " << meshes.size() << " part(s) at " << distance << " mm, " << camera.width
+            << "x" << camera.height << "\n";
   return 0;
 }
 

@@ -8,13 +8,20 @@ namespace {
 
 const char* error_sentence(RTCError error) {
   switch (error) {
-    case RTC_ERROR_NONE: return "no error";
-    case RTC_ERROR_INVALID_ARGUMENT: return "an argument is invalid";
-    case RTC_ERROR_INVALID_OPERATION: return "the operation is not allowed now";
-    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "this CPU lacks the instructions Embree needs";
-    case RTC_ERROR_CANCELLED: return "the operation was cancelled";
-    default: return "unknown error";
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "an argument is invalid";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "the operation is not allowed now";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "this CPU lacks the instructions Embree needs";
+    case RTC_ERROR_CANCELLED:
+      return "the operation was cancelled";
+    default:
+      return "unknown error";
   }
 }
 

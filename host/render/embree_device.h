@@ -1,6 +1,6 @@
 #pragma once
 // The process's one Embree device (Embree's thread pool and memory), shared by every
-// Scene, and the check that turns Embree's error codes into exceptions.
+// RenderScene, and the check that turns Embree's error codes into exceptions.
 #include <embree3/rtcore.h>
 
 namespace flexsight::render_detail {

@@ -1,10 +1,10 @@
 #include "host/render/mesh.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -129,7 +129,8 @@ Mesh build_mesh(const std::string& source, const std::vector<Eigen::Vector3f>& r
     Triangle tri;
     for (int k = 0; k < 3; ++k) {
       if (raw_triangles[t][k] >= raw_positions.size()) {
-        throw InputError(source, "triangle " + std::to_string(t) + " has a vertex index out of range");
+        throw InputError(source,
+                         "triangle " + std::to_string(t) + " has a vertex index out of range");
       }
       tri[k] = remap[raw_triangles[t][k]];
     }
@@ -168,7 +169,7 @@ Mesh build_mesh(const std::string& source, const std::vector<Eigen::Vector3f>& r
       const float length = n.norm();
       // A zero or broken file normal falls back to its triangle's own.
       n = (std::isfinite(length) && length > 0.0f) ? Eigen::Vector3f(n / length)
-                                                    : mesh.face_normals[c / 3];
+                                                   : mesh.face_normals[c / 3];
     }
   } else {
     mesh.corner_normals = crease_normals(mesh, options.crease_degrees);
@@ -187,7 +188,7 @@ struct Box {
 
 struct Node {
   Box box;
-  std::uint32_t begin, end;   // range of the ordered point indices
+  std::uint32_t begin, end;  // range of the ordered point indices
   std::int32_t left = -1, right = -1;
 };
 
@@ -234,10 +235,9 @@ class DiameterSearch {
       int axis;
       (node.box.hi - node.box.lo).maxCoeff(&axis);
       const std::uint32_t mid = begin + (end - begin) / 2;
-      std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                       [&](std::uint32_t a, std::uint32_t b) {
-                         return points_[a][axis] < points_[b][axis];
-                       });
+      std::nth_element(
+          order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+          [&](std::uint32_t a, std::uint32_t b) { return points_[a][axis] < points_[b][axis]; });
       const std::int32_t left = build(begin, mid);
       const std::int32_t right = build(mid, end);
       nodes_[id].left = left;
@@ -336,8 +336,8 @@ Mesh load_mesh(const std::string& path, const MeshOptions& options) {
   // apart whose normals or texture coordinates differ).
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
   if (scene == nullptr) {
-    throw InputError(path, std::string("cannot be read as a mesh (") +
-                               importer.GetErrorString() + ")");
+    throw InputError(path,
+                     std::string("cannot be read as a mesh (") + importer.GetErrorString() + ")");
   }
   if (scene->mNumMeshes == 0) throw InputError(path, "has no triangles");
 

@@ -37,7 +37,7 @@ Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& p) const {
 
 // ---------------------------------------------------------------- scene
 
-struct Scene::Impl {
+struct RenderScene::Impl {
   std::vector<std::shared_ptr<const Mesh>> meshes;
   std::vector<RTCScene> mesh_scenes;
   std::vector<Instance> instances;
@@ -81,14 +81,14 @@ struct Scene::Impl {
   }
 };
 
-Scene::Scene() : impl_(std::make_unique<Impl>()) {}
-Scene::~Scene() = default;
-Scene::Scene(Scene&&) noexcept = default;
-Scene& Scene::operator=(Scene&&) noexcept = default;
+RenderScene::RenderScene() : impl_(std::make_unique<Impl>()) {}
+RenderScene::~RenderScene() = default;
+RenderScene::RenderScene(RenderScene&&) noexcept = default;
+RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
 
-int Scene::add_mesh(std::shared_ptr<const Mesh> mesh) {
+int RenderScene::add_mesh(std::shared_ptr<const Mesh> mesh) {
   if (mesh == nullptr || mesh->triangles.empty()) {
-    throw std::invalid_argument("Scene::add_mesh: a mesh with triangles is needed");
+    throw std::invalid_argument("RenderScene::add_mesh: a mesh with triangles is needed");
   }
   const RTCDevice device = embree_device();
   RTCScene scene = rtcNewScene(device);
@@ -97,12 +97,12 @@ int Scene::add_mesh(std::shared_ptr<const Mesh> mesh) {
   // build pays for itself.
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      mesh->positions.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      mesh->triangles.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               mesh->positions.size()));
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), mesh->triangles.size()));
   if (vertices == nullptr || indices == nullptr) {
     rtcReleaseGeometry(geometry);
     rtcReleaseScene(scene);
@@ -129,9 +129,9 @@ int Scene::add_mesh(std::shared_ptr<const Mesh> mesh) {
   return static_cast<int>(impl_->meshes.size()) - 1;
 }
 
-int Scene::add_instance(int mesh, const Pose& pose, const Material& material) {
+int RenderScene::add_instance(int mesh, const Pose& pose, const Material& material) {
   if (mesh < 0 || mesh >= mesh_count()) {
-    throw std::out_of_range("Scene::add_instance: no mesh " + std::to_string(mesh));
+    throw std::out_of_range("RenderScene::add_instance: no mesh " + std::to_string(mesh));
   }
   const int id = instance_count();
   const RTCDevice device = embree_device();
@@ -152,36 +152,36 @@ int Scene::add_instance(int mesh, const Pose& pose, const Material& material) {
   return id;
 }
 
-void Scene::set_pose(int instance, const Pose& pose) {
+void RenderScene::set_pose(int instance, const Pose& pose) {
   if (instance < 0 || instance >= instance_count()) {
-    throw std::out_of_range("Scene::set_pose: no instance " + std::to_string(instance));
+    throw std::out_of_range("RenderScene::set_pose: no instance " + std::to_string(instance));
   }
   impl_->instances[instance].pose = pose;
   impl_->set_transform(instance);
 }
 
-void Scene::set_material(int instance, const Material& material) {
+void RenderScene::set_material(int instance, const Material& material) {
   if (instance < 0 || instance >= instance_count()) {
-    throw std::out_of_range("Scene::set_material: no instance " + std::to_string(instance));
+    throw std::out_of_range("RenderScene::set_material: no instance " + std::to_string(instance));
   }
   impl_->instances[instance].material = material;
 }
 
-void Scene::commit() {
+void RenderScene::commit() {
   rtcCommitScene(impl_->top);
   for (RTCScene solo : impl_->solo_scenes) rtcCommitScene(solo);
   check_embree("building the scene's hierarchy");
   impl_->dirty = false;
 }
 
-bool Scene::committed() const { return !impl_->dirty; }
-int Scene::mesh_count() const { return static_cast<int>(impl_->meshes.size()); }
-int Scene::instance_count() const { return static_cast<int>(impl_->instances.size()); }
-const Mesh& Scene::mesh(int index) const { return *impl_->meshes.at(index); }
-const Instance& Scene::instance(int id) const { return impl_->instances.at(id); }
-RTCScene Scene::embree_scene() const { return impl_->top; }
-RTCScene Scene::embree_mesh_scene(int mesh) const { return impl_->mesh_scenes.at(mesh); }
-RTCScene Scene::embree_instance_scene(int instance) const {
+bool RenderScene::committed() const { return !impl_->dirty; }
+int RenderScene::mesh_count() const { return static_cast<int>(impl_->meshes.size()); }
+int RenderScene::instance_count() const { return static_cast<int>(impl_->instances.size()); }
+const Mesh& RenderScene::mesh(int index) const { return *impl_->meshes.at(index); }
+const Instance& RenderScene::instance(int id) const { return impl_->instances.at(id); }
+RTCScene RenderScene::embree_scene() const { return impl_->top; }
+RTCScene RenderScene::embree_mesh_scene(int mesh) const { return impl_->mesh_scenes.at(mesh); }
+RTCScene RenderScene::embree_instance_scene(int instance) const {
   return impl_->solo_scenes.at(instance);
 }
 
@@ -202,9 +202,9 @@ struct CameraRays {
   std::vector<float> dx, dy;
 };
 
-void require_committed(const Scene& scene) {
+void require_committed(const RenderScene& scene) {
   if (!scene.committed()) {
-    throw std::logic_error("ray casting needs Scene::commit() after the last change");
+    throw std::logic_error("ray casting needs RenderScene::commit() after the last change");
   }
 }
 
@@ -214,7 +214,7 @@ struct SceneView {
     const Mesh* mesh;
     Eigen::Matrix3f R;
   };
-  explicit SceneView(const Scene& scene) {
+  explicit SceneView(const RenderScene& scene) {
     require_committed(scene);
     instances.reserve(scene.instance_count());
     for (int i = 0; i < scene.instance_count(); ++i) {
@@ -322,7 +322,7 @@ cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera&
 
 }  // namespace
 
-RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
+RaycastImages raycast(const RenderScene& scene, const PinholeCamera& camera,
                       const RaycastOptions& options) {
   const CameraRays rays(camera);
   const SceneView view(scene);
@@ -346,7 +346,7 @@ RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
   return images;
 }
 
-std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camera,
+std::vector<cv::Mat> amodal_masks(const RenderScene& scene, const PinholeCamera& camera,
                                   const RaycastOptions& options) {
   const CameraRays rays(camera);
   require_committed(scene);

@@ -45,22 +45,23 @@ struct Material {
 };
 
 struct Instance {
-  int mesh = 0;  // index returned by Scene::add_mesh
+  int mesh = 0;  // index returned by RenderScene::add_mesh
   Pose pose;
   Material material;
 };
 
 // Meshes, each with its own bounding volume hierarchy built once, and instances of them
 // at poses; Embree traces the instances without copying their triangles, so a bin of
-// twenty copies of one part costs one part's memory.
-class Scene {
+// twenty copies of one part costs one part's memory. (Not "Scene": host/eval's Scene is
+// a data set's stereo scene, in the same namespace.)
+class RenderScene {
  public:
-  Scene();
-  ~Scene();
-  Scene(Scene&&) noexcept;
-  Scene& operator=(Scene&&) noexcept;
-  Scene(const Scene&) = delete;
-  Scene& operator=(const Scene&) = delete;
+  RenderScene();
+  ~RenderScene();
+  RenderScene(RenderScene&&) noexcept;
+  RenderScene& operator=(RenderScene&&) noexcept;
+  RenderScene(const RenderScene&) = delete;
+  RenderScene& operator=(const RenderScene&) = delete;
 
   // Builds the mesh's hierarchy now and returns its index.
   int add_mesh(std::shared_ptr<const Mesh> mesh);
@@ -108,13 +109,13 @@ struct RaycastImages {
 // Casts one ray per pixel through the instances, closest hit first. Surfaces are two
 // sided: a ray that meets a triangle from behind (an open mesh seen from inside) reports
 // the normals turned towards the camera.
-RaycastImages raycast(const Scene& scene, const PinholeCamera& camera,
+RaycastImages raycast(const RenderScene& scene, const PinholeCamera& camera,
                       const RaycastOptions& options = {});
 
 // The mask of each instance as if it were alone (amodal: including what others hide),
 // CV_8UC1 with 255 on the instance. Only the pixels within the projection of the
 // instance's box are cast.
-std::vector<cv::Mat> amodal_masks(const Scene& scene, const PinholeCamera& camera,
+std::vector<cv::Mat> amodal_masks(const RenderScene& scene, const PinholeCamera& camera,
                                   const RaycastOptions& options = {});
 
 // The pixels where `instance` is the closest surface, CV_8UC1 255 / 0.

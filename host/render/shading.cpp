@@ -31,7 +31,8 @@ bool finite_nonnegative(const Eigen::Vector3f& v) { return v.allFinite() && v.mi
 
 // A shadow ray's start: the hit point moved off its surface, against self-hits, by
 // about 100 float steps at that distance from the camera (10 um at 1 m).
-Eigen::Vector3f shadow_origin(const Eigen::Vector3f& point, const Eigen::Vector3f& geometric_normal) {
+Eigen::Vector3f shadow_origin(const Eigen::Vector3f& point,
+                              const Eigen::Vector3f& geometric_normal) {
   const float offset = 1e-5f * point.cwiseAbs().maxCoeff() + 1e-4f;
   return point + offset * geometric_normal;
 }
@@ -132,7 +133,8 @@ void ShadingOptions::check() const {
     if (!(light.falloff_degrees >= 0.0f && light.falloff_degrees <= 180.0f)) {
       fail(name + "falloff must be in [0, 180] degrees");
     }
-    if (light.cone_degrees < 180.0f && !(light.direction.allFinite() && light.direction.norm() > 0.0f)) {
+    if (light.cone_degrees < 180.0f &&
+        !(light.direction.allFinite() && light.direction.norm() > 0.0f)) {
       fail(name + "a spot light needs a direction");
     }
   }
@@ -141,11 +143,11 @@ void ShadingOptions::check() const {
   if (shadow_samples < 1 || shadow_samples > 256) fail("shadow samples must be in 1..256");
 }
 
-cv::Mat shade_linear(const Scene& scene, const RaycastImages& images,
+cv::Mat shade_linear(const RenderScene& scene, const RaycastImages& images,
                      const ShadingOptions& options) {
   options.check();
   if (!scene.committed()) {
-    throw std::logic_error("shading needs Scene::commit() after the last change");
+    throw std::logic_error("shading needs RenderScene::commit() after the last change");
   }
   const int width = images.depth.cols, height = images.depth.rows;
   cv::Mat radiance = cv::Mat::zeros(height, width, CV_32FC3);
@@ -159,52 +161,53 @@ cv::Mat shade_linear(const Scene& scene, const RaycastImages& images,
   }
   const RTCScene top = scene.embree_scene();
 
-  render_detail::for_each_tile(cv::Rect(0, 0, width, height), options.threads,
-                               [&](int x0, int y0, int x1, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        const int id = images.instance.at<std::int32_t>(y, x);
-        if (id < 0) continue;
-        const Material& material = scene.instance(id).material;
-        const cv::Vec3f& p = images.point.at<cv::Vec3f>(y, x);
-        const cv::Vec3f& ns = images.normal.at<cv::Vec3f>(y, x);
-        const cv::Vec3f& ng = images.geometric_normal.at<cv::Vec3f>(y, x);
-        const Eigen::Vector3f point(p[0], p[1], p[2]);
-        const Eigen::Vector3f normal(ns[0], ns[1], ns[2]);
-        const Eigen::Vector3f geometric(ng[0], ng[1], ng[2]);
-        const Eigen::Vector3f to_eye = -point.normalized();
-        const Eigen::Vector3f origin = shadow_origin(point, geometric);
-        const fs_u32 pixel = fs_u32(y) * fs_u32(width) + fs_u32(x);
+  render_detail::for_each_tile(
+      cv::Rect(0, 0, width, height), options.threads, [&](int x0, int y0, int x1, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            const int id = images.instance.at<std::int32_t>(y, x);
+            if (id < 0) continue;
+            const Material& material = scene.instance(id).material;
+            const cv::Vec3f& p = images.point.at<cv::Vec3f>(y, x);
+            const cv::Vec3f& ns = images.normal.at<cv::Vec3f>(y, x);
+            const cv::Vec3f& ng = images.geometric_normal.at<cv::Vec3f>(y, x);
+            const Eigen::Vector3f point(p[0], p[1], p[2]);
+            const Eigen::Vector3f normal(ns[0], ns[1], ns[2]);
+            const Eigen::Vector3f geometric(ng[0], ng[1], ng[2]);
+            const Eigen::Vector3f to_eye = -point.normalized();
+            const Eigen::Vector3f origin = shadow_origin(point, geometric);
+            const fs_u32 pixel = fs_u32(y) * fs_u32(width) + fs_u32(x);
 
-        Eigen::Vector3f colour = options.ambient * material.albedo;
-        for (size_t l = 0; l < lights.size(); ++l) {
-          const Light& light = lights[l];
-          const Eigen::Vector3f to_light = (light.position - point).normalized();
-          const float lambert = normal.dot(to_light);
-          // A light behind the triangle itself lights nothing there, whatever the
-          // interpolated normal says.
-          if (lambert <= 0.0f || geometric.dot(to_light) <= 0.0f) continue;
-          const float spot = spot_factor(light, -to_light);
-          if (spot <= 0.0f) continue;
-          const bool casts_shadows = options.shadows && l < scene_lights;
-          const float visible =
-              casts_shadows ? visibility(top, options, light, fs_u32(l), pixel, origin) : 1.0f;
-          if (visible <= 0.0f) continue;
-          const Eigen::Vector3f half = (to_light + to_eye).normalized();
-          const float highlight =
-              material.specular * std::pow(std::max(normal.dot(half), 0.0f), material.shininess);
-          colour += (visible * spot) *
-                    light.intensity.cwiseProduct(lambert * material.albedo +
-                                                 Eigen::Vector3f::Constant(highlight));
+            Eigen::Vector3f colour = options.ambient * material.albedo;
+            for (size_t l = 0; l < lights.size(); ++l) {
+              const Light& light = lights[l];
+              const Eigen::Vector3f to_light = (light.position - point).normalized();
+              const float lambert = normal.dot(to_light);
+              // A light behind the triangle itself lights nothing there, whatever the
+              // interpolated normal says.
+              if (lambert <= 0.0f || geometric.dot(to_light) <= 0.0f) continue;
+              const float spot = spot_factor(light, -to_light);
+              if (spot <= 0.0f) continue;
+              const bool casts_shadows = options.shadows && l < scene_lights;
+              const float visible =
+                  casts_shadows ? visibility(top, options, light, fs_u32(l), pixel, origin) : 1.0f;
+              if (visible <= 0.0f) continue;
+              const Eigen::Vector3f half = (to_light + to_eye).normalized();
+              const float highlight = material.specular * std::pow(std::max(normal.dot(half), 0.0f),
+                                                                   material.shininess);
+              colour += (visible * spot) *
+                        light.intensity.cwiseProduct(lambert * material.albedo +
+                                                     Eigen::Vector3f::Constant(highlight));
+            }
+            radiance.at<cv::Vec3f>(y, x) = {colour.x(), colour.y(), colour.z()};
+          }
         }
-        radiance.at<cv::Vec3f>(y, x) = {colour.x(), colour.y(), colour.z()};
-      }
-    }
-  });
+      });
   return radiance;
 }
 
-cv::Mat shade(const Scene& scene, const RaycastImages& images, const ShadingOptions& options) {
+cv::Mat shade(const RenderScene& scene, const RaycastImages& images,
+              const ShadingOptions& options) {
   const cv::Mat radiance = shade_linear(scene, images, options);
   static const SrgbTable srgb;
   cv::Mat rgb(radiance.size(), CV_8UC3);

@@ -58,12 +58,13 @@ struct ShadingOptions {
 };
 
 // Linear RGB radiance (CV_32FC3) per pixel; 0 where no surface.
-cv::Mat shade_linear(const Scene& scene, const RaycastImages& images,
+cv::Mat shade_linear(const RenderScene& scene, const RaycastImages& images,
                      const ShadingOptions& options = {});
 
 // The picture: shade_linear clipped to [0, 1], sRGB-encoded, 8-bit RGB (CV_8UC3), the
 // background where no surface.
-cv::Mat shade(const Scene& scene, const RaycastImages& images, const ShadingOptions& options = {});
+cv::Mat shade(const RenderScene& scene, const RaycastImages& images,
+              const ShadingOptions& options = {});
 
 // A grey albedo with a slight tint, different per instance and the same for the same
 // (seed, instance): grey levels 0.45-0.75, each channel within 4 % of the grey.

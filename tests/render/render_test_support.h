@@ -36,9 +36,9 @@ inline ::testing::AssertionResult file_present(const std::filesystem::path& path
 // A square of side 2 * half in the z = 0 plane of its frame, as two triangles sharing
 // the diagonal.
 inline std::shared_ptr<const Mesh> square_mesh(float half) {
-  return std::make_shared<const Mesh>(make_mesh(
-      "square", {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
-      {{0, 1, 2}, {0, 2, 3}}));
+  return std::make_shared<const Mesh>(
+      make_mesh("square", {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
+                {{0, 1, 2}, {0, 2, 3}}));
 }
 
 // The box [-h, h] (per axis) as 12 triangles, counter-clockwise from outside.

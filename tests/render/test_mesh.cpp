@@ -73,9 +73,8 @@ TEST_P(MeshLoadingCube, JoinsVerticesTriangulatesAndKeepsMillimetres) {
       const Eigen::Vector3f& corner = mesh.corner_normals[3 * t + k];
       // 90-degree edges are sharper than the crease angle: flat faces. A file's own
       // normals are kept as they are.
-      const Eigen::Vector3f expected = GetParam().smooth_file_normals
-                                           ? Eigen::Vector3f(mesh.positions[tri[k]].normalized())
-                                           : n;
+      const Eigen::Vector3f expected =
+          GetParam().smooth_file_normals ? Eigen::Vector3f(mesh.positions[tri[k]].normalized()) : n;
       EXPECT_LT((corner - expected).norm(), 1e-5f) << "triangle " << t << " corner " << k;
     }
   }
@@ -100,28 +99,17 @@ TEST(MeshLoading, TlessPartsKeepTheirTrianglesBoxAndDiameter) {
     double diameter;
   };
   const Part parts[] = {
-      {"02", 82114, 82114, 66.1512},
-      {"04", 7374, 7374, 80.7257},
-      {"05", 25614, 25614, 97.8213},
-      {"06", 5700, 5700, 97.4388},
-      {"07", 17102, 17102, 101.9339},
-      {"08", 22812, 22812, 177.8347},
-      {"09", 14120, 14120, 130.0913},
-      {"10", 18434, 18434, 90.2112},
-      {"11", 42622, 42614, 76.5978},
-      {"12", 44154, 44154, 86.0109},
-      {"13", 12774, 12774, 58.1257},
-      {"14", 13788, 13788, 71.9471},
-      {"15", 13654, 13654, 68.5692},
-      {"16", 18738, 18738, 62.2694},
-      {"19", 4692, 4692, 89.0689},
-      {"20", 4692, 4692, 98.8887},
-      {"21", 20508, 20508, 92.2527},
-      {"22", 21210, 21210, 92.2527},
-      {"23", 5890, 5890, 128.3283},
-      {"24", 21946, 21946, 84.7360},
-      {"25", 8846, 8846, 76.1610},
-      {"26", 8792, 8792, 76.1610},
+      {"02", 82114, 82114, 66.1512},  {"04", 7374, 7374, 80.7257},
+      {"05", 25614, 25614, 97.8213},  {"06", 5700, 5700, 97.4388},
+      {"07", 17102, 17102, 101.9339}, {"08", 22812, 22812, 177.8347},
+      {"09", 14120, 14120, 130.0913}, {"10", 18434, 18434, 90.2112},
+      {"11", 42622, 42614, 76.5978},  {"12", 44154, 44154, 86.0109},
+      {"13", 12774, 12774, 58.1257},  {"14", 13788, 13788, 71.9471},
+      {"15", 13654, 13654, 68.5692},  {"16", 18738, 18738, 62.2694},
+      {"19", 4692, 4692, 89.0689},    {"20", 4692, 4692, 98.8887},
+      {"21", 20508, 20508, 92.2527},  {"22", 21210, 21210, 92.2527},
+      {"23", 5890, 5890, 128.3283},   {"24", 21946, 21946, 84.7360},
+      {"25", 8846, 8846, 76.1610},    {"26", 8792, 8792, 76.1610},
       {"30", 12184, 12184, 53.2523},
   };
   ASSERT_EQ(std::size(parts), 23u);
@@ -163,9 +151,12 @@ TEST(MeshLoading, BadFilesGiveAnInputErrorNamingTheFile) {
   const std::string unsupported = (dir / "cube.3ds").string();
   std::ofstream(unsupported) << "not really";
   const std::string cases[] = {
-      render_fixture("empty.stl"),         render_fixture("not_a_mesh.ply"),
-      render_fixture("points_only.ply"),   render_fixture("lines_only.obj"),
-      render_fixture("no_such_mesh.stl"),  dir.string(),
+      render_fixture("empty.stl"),
+      render_fixture("not_a_mesh.ply"),
+      render_fixture("points_only.ply"),
+      render_fixture("lines_only.obj"),
+      render_fixture("no_such_mesh.stl"),
+      dir.string(),
       unsupported,
   };
   for (const std::string& path : cases) {
@@ -173,25 +164,28 @@ TEST(MeshLoading, BadFilesGiveAnInputErrorNamingTheFile) {
     EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
-  EXPECT_NE(input_error_of([&] { load_mesh(render_fixture("points_only.ply")); }).find("no triangles"),
-            std::string::npos);
+  EXPECT_NE(
+      input_error_of([&] { load_mesh(render_fixture("points_only.ply")); }).find("no triangles"),
+      std::string::npos);
   EXPECT_NE(input_error_of([&] { load_mesh(render_fixture("empty.stl")); }).find("empty"),
             std::string::npos);
 }
 
 TEST(MeshLoading, MadeMeshesAreCheckedLikeFiles) {
-  EXPECT_EQ(input_error_of([] { make_mesh("bad index", {{0, 0, 0}, {1, 0, 0}}, {{0, 1, 2}}); })
-                .rfind("bad index: ", 0),
+  EXPECT_EQ(input_error_of([] {
+              make_mesh("bad index", {{0, 0, 0}, {1, 0, 0}}, {{0, 1, 2}});
+            }).rfind("bad index: ", 0),
             0u);
   EXPECT_EQ(input_error_of([] {
               make_mesh("nan", {{0, 0, 0}, {1, 0, 0}, {0, NAN, 0}}, {{0, 1, 2}});
             }).rfind("nan: ", 0),
             0u);
   // Corners that coincide, or lie on one line, leave no triangle.
-  EXPECT_NE(input_error_of([] {
-              make_mesh("flat", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}}, {{0, 1, 2}, {0, 3, 1}});
-            }).find("flat: has no triangles"),
-            std::string::npos);
+  EXPECT_NE(
+      input_error_of([] {
+        make_mesh("flat", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}}, {{0, 1, 2}, {0, 3, 1}});
+      }).find("flat: has no triangles"),
+      std::string::npos);
 }
 
 // A cylinder of 24 facets (15 degrees apart, under the 30-degree crease angle) with

@@ -58,7 +58,7 @@ TEST(RaycastDepth, PlaneOfTwoTrianglesAtAKnownPose) {
   const PinholeCamera camera = awkward_camera();
   const float half = 100.0f;
   const Pose pose = make_pose(35.0, {1.0, 0.6, 0.2}, {10.0, -20.0, 800.0});
-  Scene scene;
+  RenderScene scene;
   scene.add_instance(scene.add_mesh(square_mesh(half)), pose);
   scene.commit();
   const RaycastImages images = raycast(scene, camera);
@@ -88,7 +88,7 @@ TEST(RaycastDepth, BoxAtAKnownPose) {
   const PinholeCamera camera = awkward_camera();
   const Eigen::Vector3d h(30.0, 20.0, 25.0);
   const Pose pose = make_pose(40.0, {1.0, 2.0, 3.0}, {5.0, 10.0, 300.0});
-  Scene scene;
+  RenderScene scene;
   scene.add_instance(scene.add_mesh(box_mesh(h.cast<float>())), pose);
   scene.commit();
   const RaycastImages images = raycast(scene, camera);
@@ -144,7 +144,7 @@ TEST(RaycastMasks, ProjectedBoxOfATlessPartIsTheBoxOfItsMask) {
   for (const Pose& pose : {make_pose(0.0, {0, 0, 1}, {0, 0, 600}),
                            make_pose(70.0, {0.3, -1.0, 0.5}, {-12.0, 8.0, 450.0}),
                            make_pose(150.0, {1.0, 1.0, 0.0}, {20.0, -15.0, 700.0})}) {
-    Scene scene;
+    RenderScene scene;
     scene.add_instance(scene.add_mesh(mesh), pose);
     scene.commit();
     const RaycastImages images = raycast(scene, camera);
@@ -189,7 +189,7 @@ TEST(RaycastMasks, VisibleFractionBehindAKnownOccluder) {
   camera.width = camera.height = 200;
   camera.fx = camera.fy = 1000.0;
   camera.cx = camera.cy = 99.5;
-  Scene scene;
+  RenderScene scene;
   const int square = scene.add_mesh(square_mesh(50.0f));
   // Back: |x|, |y| <= 50 at z = 1000: columns and rows 50..149 (100 x 100).
   const int back = scene.add_instance(square, make_pose(0, {0, 0, 1}, {0, 0, 1000}));
@@ -225,9 +225,9 @@ TEST(RaycastDepth, PosesCanChangeBetweenImages) {
   camera.width = camera.height = 64;
   camera.fx = camera.fy = 100.0;
   camera.cx = camera.cy = 31.5;
-  Scene scene;
-  const int id = scene.add_instance(scene.add_mesh(square_mesh(10.0f)),
-                                    make_pose(0, {0, 0, 1}, {0, 0, 400}));
+  RenderScene scene;
+  const int id =
+      scene.add_instance(scene.add_mesh(square_mesh(10.0f)), make_pose(0, {0, 0, 1}, {0, 0, 400}));
   scene.commit();
   EXPECT_EQ(raycast(scene, camera).depth.at<float>(32, 32), 400.0f);
   scene.set_pose(id, make_pose(0, {0, 0, 1}, {0, 0, 250}));
@@ -238,7 +238,7 @@ TEST(RaycastDepth, PosesCanChangeBetweenImages) {
 }
 
 TEST(RaycastDepth, RejectsAnImpossibleCamera) {
-  Scene scene;
+  RenderScene scene;
   scene.add_instance(scene.add_mesh(square_mesh(10.0f)), make_pose(0, {0, 0, 1}, {0, 0, 400}));
   scene.commit();
   for (const auto& edit : std::vector<std::function<void(PinholeCamera&)>>{
@@ -258,15 +258,17 @@ TEST(RaycastDepth, RejectsAnImpossibleCamera) {
 // A bin-like scene of T-LESS parts, ray cast and shaded with soft shadows: every
 // output is the same bytes with 1, 2 and 5 threads.
 TEST(RaycastDeterminism, SameBytesWithOneAndManyThreads) {
-  Scene scene;
+  RenderScene scene;
   const char* objects[] = {"02", "05", "11", "19", "26"};
   for (int i = 0; i < 5; ++i) {
     ASSERT_TRUE(file_present(tless_cad_path(objects[i])));
-    const int mesh =
-        scene.add_mesh(std::make_shared<const Mesh>(load_mesh(tless_cad_path(objects[i]).string())));
+    const int mesh = scene.add_mesh(
+        std::make_shared<const Mesh>(load_mesh(tless_cad_path(objects[i]).string())));
     Material material;
     material.albedo = tinted_grey(3, i);
-    scene.add_instance(mesh, make_pose(37.0 * i, {1.0, i - 2.0, 0.5}, {-60.0 + 30.0 * i, 10.0 * (i % 2), 500.0 + 15 * i}),
+    scene.add_instance(mesh,
+                       make_pose(37.0 * i, {1.0, i - 2.0, 0.5},
+                                 {-60.0 + 30.0 * i, 10.0 * (i % 2), 500.0 + 15 * i}),
                        material);
   }
   const int floor = scene.add_mesh(square_mesh(400.0f));
@@ -284,9 +286,9 @@ TEST(RaycastDeterminism, SameBytesWithOneAndManyThreads) {
     options.threads = threads;
     shading.threads = threads;
     RaycastImages images = raycast(scene, camera, options);
-    std::vector<cv::Mat> outputs = {images.depth, images.instance, images.normal,
-                                    images.geometric_normal, images.point,
-                                    shade(scene, images, shading)};
+    std::vector<cv::Mat> outputs = {images.depth,  images.instance,
+                                    images.normal, images.geometric_normal,
+                                    images.point,  shade(scene, images, shading)};
     for (const cv::Mat& mask : amodal_masks(scene, camera, options)) outputs.push_back(mask);
     return outputs;
   };
@@ -295,7 +297,8 @@ TEST(RaycastDeterminism, SameBytesWithOneAndManyThreads) {
     const std::vector<cv::Mat> many = run(threads);
     ASSERT_EQ(many.size(), one.size());
     for (size_t i = 0; i < one.size(); ++i) {
-      EXPECT_TRUE(same_mat_bytes(one[i], many[i])) << "output " << i << ", " << threads << " threads";
+      EXPECT_TRUE(same_mat_bytes(one[i], many[i]))
+          << "output " << i << ", " << threads << " threads";
     }
   }
   // Every part and the floor are in the picture, each visible pixel within its amodal

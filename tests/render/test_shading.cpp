@@ -40,14 +40,14 @@ Material matte(const Eigen::Vector3f& albedo) {
 // A floor square facing the camera at z = 1000, optionally an occluder square between
 // it and the light.
 struct FloorScene {
-  Scene scene;
+  RenderScene scene;
   RaycastImages images;
   FloorScene(const PinholeCamera& camera, bool occluder, const Material& material) {
     scene.add_instance(scene.add_mesh(square_mesh(2000.0f)), make_pose(0, {0, 0, 1}, {0, 0, 1000}),
                        material);
     if (occluder) {
-      scene.add_instance(scene.add_mesh(square_mesh(60.0f)),
-                         make_pose(0, {0, 0, 1}, {0, 0, 800}), material);
+      scene.add_instance(scene.add_mesh(square_mesh(60.0f)), make_pose(0, {0, 0, 1}, {0, 0, 800}),
+                         material);
     }
     scene.commit();
     images = raycast(scene, camera);
@@ -98,7 +98,8 @@ TEST(Shading, HardShadowIsWhereTheSegmentToTheLightCrossesTheOccluder) {
       const float inside = 60.0f - q.head<2>().cwiseAbs().maxCoeff();
       const float lambert = Eigen::Vector3f(0, 0, -1).dot((light - p).normalized());
       const Eigen::Vector3f ambient = options.ambient * albedo;
-      const Eigen::Vector3f full = ambient + lambert * options.lights[0].intensity.cwiseProduct(albedo);
+      const Eigen::Vector3f full =
+          ambient + lambert * options.lights[0].intensity.cwiseProduct(albedo);
       if (inside > 0.5f) {
         EXPECT_LT((at(radiance, u, v) - ambient).norm(), 1e-6f) << u << ", " << v;
         ++shadowed;
@@ -190,7 +191,7 @@ TEST(Shading, HighlightPeaksWhereTheNormalFacesTheCameraLight) {
   shiny.specular = 1.0f;
   shiny.shininess = 60.0f;
   const Pose pose = make_pose(12.0, {1.0, -0.7, 0.0}, {10.0, 5.0, 600.0});
-  Scene scene;
+  RenderScene scene;
   scene.add_instance(scene.add_mesh(square_mesh(1000.0f)), pose, shiny);
   scene.commit();
   const RaycastImages images = raycast(scene, camera);
@@ -213,7 +214,7 @@ TEST(Shading, HighlightPeaksWhereTheNormalFacesTheCameraLight) {
 // The picture: the background where no surface is, sRGB-encoded radiance elsewhere.
 TEST(Shading, PictureIsSrgbOverTheBackground) {
   const PinholeCamera camera = small_camera();
-  Scene scene;
+  RenderScene scene;
   scene.add_instance(scene.add_mesh(square_mesh(100.0f)), make_pose(0, {0, 0, 1}, {0, 0, 1000}),
                      matte({1.0f, 0.5f, 0.0f}));
   scene.commit();
