@@ -9,5 +9,6 @@ int run_stereo_command(std::vector<std::string> args);
 int run_eval_command(std::vector<std::string> args);
 int run_devices_command(std::vector<std::string> args);
 int run_cloud_command(std::vector<std::string> args);
+int run_render_command(std::vector<std::string> args);
 
 }  // namespace flexsight
