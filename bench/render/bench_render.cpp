@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "host/render/mesh.h"
+#include "host/render/primary_rays.h"
 #include "host/render/raycaster.h"
 #include "host/render/shading.h"
 #include "kernels/common/counter_rng.h"
@@ -86,12 +87,18 @@ void set_rates(benchmark::State& state, const PinholeCamera& camera, const char*
                  std::to_string(threads_of(state)) + " thread(s)");
 }
 
-// raycast(): every output image, OpenMP over 16x16 tiles, rtcIntersect1 per pixel.
+// The ray caster's options with the benchmark's thread count.
+RaycastOptions raycast_options(const benchmark::State& state) {
+  RaycastOptions options;
+  options.threads = threads_of(state);
+  return options;
+}
+
+// raycast(): every output image, OpenMP over 16x16 tiles, 4x4 packets (rtcIntersect16).
 void BM_Render_Raycast(benchmark::State& state) {
   BinScene bin(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   if (!bin.ok) return state.SkipWithError(bin.error.c_str());
-  RaycastOptions options;
-  options.threads = threads_of(state);
+  const RaycastOptions options = raycast_options(state);
   for (auto _ : state) {
     RaycastImages images = raycast(bin.scene, bin.camera, options);
     benchmark::DoNotOptimize(images.depth.data);
@@ -99,17 +106,32 @@ void BM_Render_Raycast(benchmark::State& state) {
   set_rates(state, bin.camera, "rays/s");
 }
 
+// The raw Embree loops' ray directions per column and row, and what they keep of each
+// hit: t (the depth) and the instance.
+struct RawRays {
+  explicit RawRays(const PinholeCamera& camera)
+      : dx(camera.width), dy(camera.height), depth(size_t(camera.width) * camera.height),
+        instance(depth.size()) {
+    for (int u = 0; u < camera.width; ++u) dx[u] = float((u - camera.cx) / camera.fx);
+    for (int v = 0; v < camera.height; ++v) dy[v] = float((v - camera.cy) / camera.fy);
+  }
+  // Keeps the compiler from dropping the casts whose results nobody reads.
+  void keep() {
+    benchmark::DoNotOptimize(depth.data());
+    benchmark::DoNotOptimize(instance.data());
+  }
+  std::vector<float> dx, dy;
+  std::vector<float> depth;
+  std::vector<unsigned> instance;
+};
+
 // The same rays through rtcIntersect1 alone, keeping only t and the instance: what the
 // ray caster would cost without its outputs.
 void BM_Render_RawEmbree1(benchmark::State& state) {
   BinScene bin(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   if (!bin.ok) return state.SkipWithError(bin.error.c_str());
   const PinholeCamera& camera = bin.camera;
-  std::vector<float> dx(camera.width), dy(camera.height);
-  for (int u = 0; u < camera.width; ++u) dx[u] = float((u - camera.cx) / camera.fx);
-  for (int v = 0; v < camera.height; ++v) dy[v] = float((v - camera.cy) / camera.fy);
-  std::vector<float> depth(size_t(camera.width) * camera.height);
-  std::vector<unsigned> instance(depth.size());
+  RawRays raw(camera);
   const RTCScene top = bin.scene.embree_scene();
   const int threads = threads_of(state);
   for (auto _ : state) {
@@ -120,24 +142,13 @@ void BM_Render_RawEmbree1(benchmark::State& state) {
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       for (int u = 0; u < camera.width; ++u) {
         RTCRayHit rh;
-        rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.0f;
-        rh.ray.dir_x = dx[u];
-        rh.ray.dir_y = dy[v];
-        rh.ray.dir_z = 1.0f;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.time = 0.0f;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
-        rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        set_primary_ray(rh, raw.dx[u], raw.dy[v]);
         rtcIntersect1(top, &context, &rh);
-        depth[size_t(v) * camera.width + u] = rh.ray.tfar;
-        instance[size_t(v) * camera.width + u] = rh.hit.instID[0];
+        raw.depth[size_t(v) * camera.width + u] = rh.ray.tfar;
+        raw.instance[size_t(v) * camera.width + u] = rh.hit.instID[0];
       }
     }
-    benchmark::DoNotOptimize(depth.data());
-    benchmark::DoNotOptimize(instance.data());
+    raw.keep();
   }
   set_rates(state, camera, "rays/s");
 }
@@ -151,11 +162,7 @@ void BM_Render_RawEmbree16(benchmark::State& state) {
   if (camera.width % 4 != 0 || camera.height % 4 != 0) {
     return state.SkipWithError("image sides must be multiples of 4");
   }
-  std::vector<float> dx(camera.width), dy(camera.height);
-  for (int u = 0; u < camera.width; ++u) dx[u] = float((u - camera.cx) / camera.fx);
-  for (int v = 0; v < camera.height; ++v) dy[v] = float((v - camera.cy) / camera.fy);
-  std::vector<float> depth(size_t(camera.width) * camera.height);
-  std::vector<unsigned> instance(depth.size());
+  RawRays raw(camera);
   const RTCScene top = bin.scene.embree_scene();
   const int threads = threads_of(state);
   for (auto _ : state) {
@@ -169,28 +176,17 @@ void BM_Render_RawEmbree16(benchmark::State& state) {
       for (int bx = 0; bx < camera.width / 4; ++bx) {
         alignas(64) RTCRayHit16 rh;
         for (int k = 0; k < 16; ++k) {
-          rh.ray.org_x[k] = rh.ray.org_y[k] = rh.ray.org_z[k] = 0.0f;
-          rh.ray.dir_x[k] = dx[4 * bx + k % 4];
-          rh.ray.dir_y[k] = dy[4 * by + k / 4];
-          rh.ray.dir_z[k] = 1.0f;
-          rh.ray.tnear[k] = 0.0f;
-          rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-          rh.ray.time[k] = 0.0f;
-          rh.ray.mask[k] = 0xFFFFFFFFu;
-          rh.ray.id[k] = 0;
-          rh.ray.flags[k] = 0;
-          rh.hit.geomID[k] = rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+          set_primary_ray(rh, k, raw.dx[4 * bx + k % 4], raw.dy[4 * by + k / 4]);
         }
         rtcIntersect16(valid, top, &context, &rh);
         for (int k = 0; k < 16; ++k) {
           const size_t pixel = size_t(4 * by + k / 4) * camera.width + 4 * bx + k % 4;
-          depth[pixel] = rh.ray.tfar[k];
-          instance[pixel] = rh.hit.instID[0][k];
+          raw.depth[pixel] = rh.ray.tfar[k];
+          raw.instance[pixel] = rh.hit.instID[0][k];
         }
       }
     }
-    benchmark::DoNotOptimize(depth.data());
-    benchmark::DoNotOptimize(instance.data());
+    raw.keep();
   }
   set_rates(state, camera, "rays/s");
 }
@@ -199,8 +195,7 @@ void BM_Render_RawEmbree16(benchmark::State& state) {
 void BM_Render_AmodalMasks(benchmark::State& state) {
   BinScene bin(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   if (!bin.ok) return state.SkipWithError(bin.error.c_str());
-  RaycastOptions options;
-  options.threads = threads_of(state);
+  const RaycastOptions options = raycast_options(state);
   for (auto _ : state) {
     std::vector<cv::Mat> masks = amodal_masks(bin.scene, bin.camera, options);
     benchmark::DoNotOptimize(masks.data());
@@ -247,27 +242,17 @@ void BM_Render_LoadMesh(benchmark::State& state) {
 }
 
 // Sizes (the detector's 300x300 input and a 1280x960 camera) x threads (1 and all: 0).
+// 300x300 and 1280x960, one thread and all; wall-clock milliseconds.
 void sizes_and_threads(benchmark::internal::Benchmark* b) {
   for (const auto& size : {std::pair<int, int>{300, 300}, {1280, 960}})
     for (int threads : {1, 0}) b->Args({size.first, size.second, threads});
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
-BENCHMARK(BM_Render_Raycast)
-    ->Apply(sizes_and_threads)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_Render_RawEmbree1)
-    ->Apply(sizes_and_threads)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_Render_RawEmbree16)
-    ->Apply(sizes_and_threads)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_Render_AmodalMasks)
-    ->Apply(sizes_and_threads)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_Render_Raycast)->Apply(sizes_and_threads);
+BENCHMARK(BM_Render_RawEmbree1)->Apply(sizes_and_threads);
+BENCHMARK(BM_Render_RawEmbree16)->Apply(sizes_and_threads);
+BENCHMARK(BM_Render_AmodalMasks)->Apply(sizes_and_threads);
 BENCHMARK(BM_Render_Shade)
     ->Args({300, 300, 0, 0})
     ->Args({300, 300, 0, 8})

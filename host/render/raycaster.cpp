@@ -7,6 +7,7 @@
 
 #include "host/io/input_error.h"
 #include "host/render/embree_device.h"
+#include "host/render/primary_rays.h"
 #include "host/render/tiles.h"
 
 namespace flexsight {
@@ -271,18 +272,7 @@ void cast_packets(RTCScene scene, const CameraRays& rays, int x0, int y0, int x1
         const int x = bx + (k & 3), y = by + (k >> 2);
         const bool inside = x < x1 && y < y1;
         valid[k] = inside ? -1 : 0;
-        packet.ray.org_x[k] = packet.ray.org_y[k] = packet.ray.org_z[k] = 0.0f;
-        packet.ray.dir_x[k] = inside ? rays.dx[x] : 0.0f;
-        packet.ray.dir_y[k] = inside ? rays.dy[y] : 0.0f;
-        packet.ray.dir_z[k] = 1.0f;
-        packet.ray.tnear[k] = 0.0f;
-        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
-        packet.ray.time[k] = 0.0f;
-        packet.ray.mask[k] = 0xFFFFFFFFu;
-        packet.ray.id[k] = 0;
-        packet.ray.flags[k] = 0;
-        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        set_primary_ray(packet, k, inside ? rays.dx[x] : 0.0f, inside ? rays.dy[y] : 0.0f);
       }
       rtcIntersect16(valid, scene, &context, &packet);
       for (int k = 0; k < 16; ++k) {
