@@ -1,7 +1,5 @@
 #include "host/cli/backend.h"
 
-#include <iostream>
-
 #include "host/cli/arguments.h"
 #include "host/io/input_error.h"
 
