@@ -1,0 +1,57 @@
+#pragma once
+// One image of a training or test set with what is known about every part in it: the
+// in-memory form the synthetic-data generators produce, the BOP and COCO writers store
+// and their readers give back. Field names follow BOP's (docs/bop_datasets_format.md of
+// the BOP toolkit), so a reader of either format fills the same struct.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace flexsight {
+
+// BOP's scene_camera.json entry: intrinsics, and the scale that turns the 16-bit depth
+// PNG's values into millimetres (depth_mm = value * depth_scale).
+struct DatasetCamera {
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  double depth_scale = 0.1;
+};
+
+// BOP's box: x, y of the top-left pixel, width and height; (-1, -1, -1, -1) when the
+// part has no pixel (scene_gt_info's convention for a part out of view).
+struct BopBox {
+  int x = -1, y = -1, width = -1, height = -1;
+  bool empty() const { return width <= 0 || height <= 0; }
+  bool operator==(const BopBox& other) const {
+    return x == other.x && y == other.y && width == other.width && height == other.height;
+  }
+};
+
+// One part in one image: scene_gt.json (pose, model) and scene_gt_info.json (boxes,
+// pixel counts), and its masks.
+struct PartAnnotation {
+  int obj_id = 0;  // the model's id: obj_000001.ply is 1 (BOP), obj_01.stl is 1 here
+  // Pose of the model in the camera frame: x_cam = R x_model + t, t in mm.
+  Eigen::Matrix3d cam_R_m2c = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d cam_t_m2c = Eigen::Vector3d::Zero();
+  BopBox bbox_obj;    // box of the amodal (full) mask, clipped to the image
+  BopBox bbox_visib;  // box of the visible mask
+  int px_count_all = 0;    // pixels of the amodal mask inside the image
+  int px_count_valid = 0;  // of those, pixels with a valid depth
+  int px_count_visib = 0;  // pixels of the visible mask
+  double visib_fract = 0.0;  // px_count_visib / px_count_all (0 when out of view)
+  // CV_8UC1, 255 on the part, 0 elsewhere, the image's size; empty when not stored
+  // (--no-masks, or a COCO file, which has the visible mask only).
+  cv::Mat mask;        // amodal: the part as if it were alone
+  cv::Mat mask_visib;  // where the part is the closest surface
+};
+
+struct AnnotatedImage {
+  int scene_id = 0;
+  int im_id = 0;
+  cv::Mat rgb;    // CV_8UC3, RGB channel order (as load_rgb8 returns)
+  cv::Mat depth;  // CV_32FC1 in mm, 0 where no surface; empty when not stored
+  DatasetCamera camera;
+  std::vector<PartAnnotation> parts;  // in gt_id order (BOP's per-image index)
+};
+
+}  // namespace flexsight
