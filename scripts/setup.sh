@@ -8,8 +8,8 @@ packages=(
   build-essential cmake pkg-config git
   libopencv-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-  libembree-dev libassimp-dev
-  python3 python3-numpy python3-pil python3-skimage python3-meshio python3-matplotlib
+  libembree-dev libassimp-dev nlohmann-json3-dev
+  python3 python3-venv python3-numpy python3-pil python3-skimage python3-meshio python3-matplotlib
 )
 missing=()
 for package in "${packages[@]}"; do
@@ -23,6 +23,18 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
     "${missing[@]}"
+fi
+
+# pycocotools, for the check that COCO's own reader reads our COCO files
+# (tests/dataset/coco_pycocotools_check.py), is on PyPI only. It goes into a venv in the
+# build folder (PEP 668 keeps pip out of Debian's Python) made from Debian's python3, so
+# that --system-site-packages gives it Debian's numpy and PIL. Made once: re-made only
+# when pycocotools does not import. CMake's FLEXSIGHT_COCO_PYTHON points at it.
+venv=build/venv
+if ! "$venv/bin/python3" -c "import pycocotools" 2>/dev/null; then
+  echo "setup: installing pycocotools into $venv"
+  /usr/bin/python3 -m venv --system-site-packages "$venv"
+  "$venv/bin/pip" install --quiet --disable-pip-version-check pycocotools==2.0.11
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

@@ -4,6 +4,7 @@
 // and their readers give back. Field names follow BOP's (docs/bop_datasets_format.md of
 // the BOP toolkit), so a reader of either format fills the same struct.
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -14,10 +15,19 @@ namespace flexsight {
 struct DatasetCamera {
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   double depth_scale = 0.1;
+  // Further keys of the image's scene_camera.json entry, kept as they are: a JSON object
+  // (or null for none). The readers put here what they do not interpret (T-LESS's
+  // cam_R_w2c, cam_t_w2c, elev, mode); a generator adds what a user of its images needs
+  // to know (e.g. {"flip": "horizontal"}). The writer copies it beside cam_K and
+  // depth_scale, which it may not name.
+  nlohmann::json extra;
 };
 
 // BOP's box: x, y of the top-left pixel, width and height; (-1, -1, -1, -1) when the
-// part has no pixel (scene_gt_info's convention for a part out of view).
+// part has no pixel (scene_gt_info's convention for a part out of view). Our boxes
+// (gt_info.h) count pixels: width = x_max - x_min + 1, as COCO's and pycocotools' are.
+// The BOP toolkit's calc_2d_bbox gives x_max - x_min, one less; boxes read from a real
+// BOP file are kept as written.
 struct BopBox {
   int x = -1, y = -1, width = -1, height = -1;
   bool empty() const { return width <= 0 || height <= 0; }
