@@ -62,6 +62,18 @@ struct AnnotatedImage {
   cv::Mat depth;  // CV_32FC1 in mm, 0 where no surface; empty when not stored
   DatasetCamera camera;
   std::vector<PartAnnotation> parts;  // in gt_id order (BOP's per-image index)
+  // Flips of the whole picture made after rendering (host/synth's augmentation). A flip
+  // is a reflection, which no rigid pose describes: the poses are stored reflected,
+  // cam_R_m2c = F R and cam_t_m2c = F t with F = diag(-1, 1, 1) for a horizontal flip and
+  // diag(1, -1, 1) for a vertical one, so that they project the model onto the flipped
+  // pixels (the principal point being the image centre), but det(cam_R_m2c) = -1 after
+  // one flip. Both flips together are a turn by 180 degrees about the optical axis, a
+  // proper pose. Writers keep the two flags (BOP: extra keys of the image's
+  // scene_camera.json entry) so that pose evaluators can skip mirrored images.
+  bool flipped_horizontally = false;
+  bool flipped_vertically = false;
+  // Exactly one flip: the poses are reflections, no rigid motion of the model.
+  bool mirrored() const { return flipped_horizontally != flipped_vertically; }
 };
 
 }  // namespace flexsight

@@ -1,0 +1,109 @@
+#include "host/synth/full_synthetic_settings.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "host/io/input_error.h"
+
+namespace flexsight {
+namespace {
+
+std::string text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+[[noreturn]] void fail(const std::string& option, const std::string& problem) {
+  throw InputError("option --" + option, problem);
+}
+
+// lo <= value <= hi, finite.
+void in_range(const std::string& option, double value, double lo, double hi) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
+    fail(option, "must be in [" + text(lo) + ", " + text(hi) + "] (got " + text(value) + ")");
+  }
+}
+
+void int_in_range(const std::string& option, int value, int lo, int hi) {
+  if (value < lo || value > hi) {
+    fail(option, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + " (got " +
+                     std::to_string(value) + ")");
+  }
+}
+
+void ordered(const std::string& min_option, double lo, const std::string& max_option, double hi) {
+  if (lo > hi) {
+    fail(min_option, text(lo) + " is larger than --" + max_option + " " + text(hi));
+  }
+}
+
+void probability(const std::string& option, double value) { in_range(option, value, 0.0, 1.0); }
+
+}  // namespace
+
+PinholeCamera FullSyntheticSettings::camera() const {
+  PinholeCamera camera;
+  camera.width = width;
+  camera.height = height;
+  camera.fx = camera.fy = 0.5 * width / std::tan(0.5 * horizontal_fov_degrees * M_PI / 180.0);
+  camera.cx = 0.5 * (width - 1);
+  camera.cy = 0.5 * (height - 1);
+  return camera;
+}
+
+void FullSyntheticSettings::check() const {
+  int_in_range("width", width, 8, 16384);
+  int_in_range("height", height, 8, 16384);
+  in_range("fov", horizontal_fov_degrees, 1.0, 170.0);
+
+  int_in_range("min-parts", min_parts, 1, 100);
+  int_in_range("max-parts", max_parts, 1, 100);
+  ordered("min-parts", min_parts, "max-parts", max_parts);
+  if (!(std::isfinite(min_part_size) && min_part_size > 0.0)) {
+    fail("min-size", "must be positive (got " + text(min_part_size) + ")");
+  }
+  in_range("max-size", max_part_size, 1e-3, 4.0);
+  ordered("min-size", min_part_size, "max-size", max_part_size);
+  probability("min-visible", min_visible_fraction);
+  int_in_range("pose-attempts", pose_attempts, 1, 1000);
+
+  in_range("min-grey", min_grey, 0.0, 1.0);
+  in_range("max-grey", max_grey, 0.0, 1.0);
+  ordered("min-grey", min_grey, "max-grey", max_grey);
+  in_range("max-tint", max_tint, 0.0, 0.5);
+  in_range("min-specular", min_specular, 0.0, 10.0);
+  in_range("max-specular", max_specular, 0.0, 10.0);
+  ordered("min-specular", min_specular, "max-specular", max_specular);
+  in_range("min-shininess", min_shininess, 1.0, 1e4);
+  in_range("max-shininess", max_shininess, 1.0, 1e4);
+  ordered("min-shininess", min_shininess, "max-shininess", max_shininess);
+
+  int_in_range("min-lights", min_lights, 1, 3);
+  int_in_range("max-lights", max_lights, 1, 3);
+  ordered("min-lights", min_lights, "max-lights", max_lights);
+  probability("spot-probability", spot_probability);
+  probability("soft-shadows", soft_shadow_probability);
+  int_in_range("shadow-samples", shadow_samples, 1, 256);
+  probability("camera-light", camera_light_probability);
+  in_range("min-ambient", min_ambient, 0.0, 10.0);
+  in_range("max-ambient", max_ambient, 0.0, 10.0);
+  ordered("min-ambient", min_ambient, "max-ambient", max_ambient);
+
+  if (!(std::isfinite(min_crop_scale) && min_crop_scale > 0.0 && min_crop_scale <= 1.0)) {
+    fail("min-crop-scale", "must be in (0, 1] (got " + text(min_crop_scale) + ")");
+  }
+  in_range("crop-aspect-change", max_crop_aspect_change, 0.0, 1.0);
+  probability("background-flip", background_flip_probability);
+
+  probability("blur-probability", blur_probability);
+  in_range("max-blur", max_blur_sigma, 0.0, 10.0);
+  in_range("max-noise", max_noise_sigma, 0.0, 100.0);
+
+  probability("hflip", horizontal_flip_probability);
+  probability("vflip", vertical_flip_probability);
+  in_range("max-rotation", max_rotation_degrees, 0.0, 180.0);
+}
+
+}  // namespace flexsight
