@@ -10,5 +10,6 @@ int run_eval_command(std::vector<std::string> args);
 int run_devices_command(std::vector<std::string> args);
 int run_cloud_command(std::vector<std::string> args);
 int run_render_command(std::vector<std::string> args);
+int run_synth_command(std::vector<std::string> args);
 
 }  // namespace flexsight

@@ -123,6 +123,10 @@ AnnotatedImage BopReader::load(std::size_t i) const {
   image.scene_id = scene.scene_id;
   image.im_id = entry.im_id;
   image.camera = record.camera;
+  if (record.camera.extra.is_object()) {
+    image.flipped_horizontally = record.camera.extra.value("flip_horizontal", false);
+    image.flipped_vertically = record.camera.extra.value("flip_vertical", false);
+  }
   image.parts = record.parts;
   image.rgb = load_rgb8(find_rgb(scene.dir, entry.im_id));
   const cv::Size size = image.rgb.size();

@@ -16,9 +16,12 @@ namespace flexsight {
 namespace {
 
 // PNG compression fixed here, not left to OpenCV's default, so the files' bytes do not
-// change with the OpenCV version. 3 of 9: masks compress to a few hundred bytes at any
-// level, and the generator should not wait on zlib.
-const std::vector<int> kPngParams{cv::IMWRITE_PNG_COMPRESSION, 3};
+// change with the OpenCV version. Level 1: the generator should not wait on zlib (at
+// 1280x960 the masks were a third of an image's time at level 3). Masks, long runs of
+// 0 and 255, use zlib's run-length strategy: as small as level 3's files, far faster.
+const std::vector<int> kPngParams{cv::IMWRITE_PNG_COMPRESSION, 1};
+const std::vector<int> kMaskPngParams{cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
+                                      cv::IMWRITE_PNG_STRATEGY_RLE};
 
 // The 16-bit depth PNG's values: round(depth_mm / depth_scale), 0 where depth is 0.
 cv::Mat encode_depth(const cv::Mat& depth, double depth_scale, const cv::Size& size,
@@ -146,7 +149,9 @@ void BopWriter::write(const AnnotatedImage& image) {
     const std::vector<int> jpg_params{cv::IMWRITE_JPEG_QUALITY, options_.jpg_quality};
     for (const auto& [path, data] : files) {
       const bool jpg = path.size() > 4 && path.compare(path.size() - 4, 4, ".jpg") == 0;
-      dataset_files::write_encoded_image(path, data, jpg ? jpg_params : kPngParams);
+      const bool mask = data.type() == CV_8UC1 && path.find("/rgb/") == std::string::npos;
+      dataset_files::write_encoded_image(path, data,
+                                         jpg ? jpg_params : (mask ? kMaskPngParams : kPngParams));
     }
   } catch (...) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -156,6 +161,10 @@ void BopWriter::write(const AnnotatedImage& image) {
 
   BopImageRecord record;
   record.camera = image.camera;
+  // The flips go with the camera entry: a reader of poses must know the image is
+  // mirrored (annotated_image.h); keys only when set, as most images have none.
+  if (image.flipped_horizontally) record.camera.extra["flip_horizontal"] = true;
+  if (image.flipped_vertically) record.camera.extra["flip_vertical"] = true;
   record.parts = image.parts;
   for (PartAnnotation& part : record.parts) {
     part.mask.release();  // the records stay small: masks are on disk or not kept

@@ -16,7 +16,7 @@ struct Crop {
 
 }  // namespace
 
-cv::Mat draw_background(const FullSyntheticSettings& settings, const BackgroundLibrary& library,
+cv::Mat draw_background(const BackgroundCropSettings& settings, const BackgroundLibrary& library,
                         const PinholeCamera& camera, const Eigen::Matrix3d& camera_rotation,
                         std::uint32_t seed, std::int64_t image_index) {
   synth_detail::SynthRandom random(seed, image_index, synth_detail::kStreamBackground);
@@ -34,7 +34,7 @@ cv::Mat draw_background(const FullSyntheticSettings& settings, const BackgroundL
   crop.width = crop.height * aspect;
   crop.x = random.uniform(0.0, std::max(source.cols - crop.width, 0.0));
   crop.y = random.uniform(0.0, std::max(source.rows - crop.height, 0.0));
-  const bool mirror = random.chance(settings.background_flip_probability);
+  const bool mirror = random.chance(settings.flip_probability);
 
   // Shrinking by more than 2 in one bilinear step would alias: area-average first.
   const double shrink = std::min(crop.width / W, crop.height / H);

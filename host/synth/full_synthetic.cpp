@@ -11,7 +11,7 @@
 #include "host/synth/appearance.h"
 #include "host/synth/background.h"
 #include "host/synth/camera_effects.h"
-#include "host/synth/mask_annotations.h"
+#include "host/dataset/gt_info.h"
 #include "host/synth/part_placement.h"
 #include "host/synth/synth_random.h"
 
@@ -143,7 +143,10 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
 
   // The parts over the background, where a ray met one (no anti-aliasing), then the
   // camera's blur and noise over both.
-  cv::Mat rgb = draw_background(settings, backgrounds, camera, camera_rotation, seed, image_index);
+  cv::Mat rgb = draw_background(
+      {settings.min_crop_scale, settings.max_crop_aspect_change,
+       settings.background_flip_probability},
+      backgrounds, camera, camera_rotation, seed, image_index);
   cv::Mat covered;
   cv::compare(images.instance, 0, covered, cv::CMP_GE);
   shaded.copyTo(rgb, covered);
@@ -172,13 +175,12 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
     part.obj_id = parts.part(placed.part).obj_id;
     part.cam_R_m2c = F * pose.R;
     part.cam_t_m2c = F * pose.t;
-    const cv::Mat amodal = amodal_mask(placed.amodal, size, augmentation);
-    cv::Mat visible;
-    cv::compare(images.instance, placed.instance, visible, cv::CMP_EQ);
-    annotate_from_masks(amodal, visible, images.depth, part);
-    if (settings.store_masks) {
-      part.mask = amodal;
-      part.mask_visib = visible;
+    part.mask = amodal_mask(placed.amodal, size, augmentation);
+    cv::compare(images.instance, placed.instance, part.mask_visib, cv::CMP_EQ);
+    fill_gt_info(part, images.depth);
+    if (!settings.store_masks) {
+      part.mask.release();
+      part.mask_visib.release();
     }
     image.parts.push_back(std::move(part));
   }

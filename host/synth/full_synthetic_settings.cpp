@@ -5,43 +5,10 @@
 #include <string>
 
 #include "host/io/input_error.h"
+#include "host/synth/settings_checks.h"
 
 namespace flexsight {
-namespace {
-
-std::string text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-[[noreturn]] void fail(const std::string& option, const std::string& problem) {
-  throw InputError("option --" + option, problem);
-}
-
-// lo <= value <= hi, finite.
-void in_range(const std::string& option, double value, double lo, double hi) {
-  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-    fail(option, "must be in [" + text(lo) + ", " + text(hi) + "] (got " + text(value) + ")");
-  }
-}
-
-void int_in_range(const std::string& option, int value, int lo, int hi) {
-  if (value < lo || value > hi) {
-    fail(option, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + " (got " +
-                     std::to_string(value) + ")");
-  }
-}
-
-void ordered(const std::string& min_option, double lo, const std::string& max_option, double hi) {
-  if (lo > hi) {
-    fail(min_option, text(lo) + " is larger than --" + max_option + " " + text(hi));
-  }
-}
-
-void probability(const std::string& option, double value) { in_range(option, value, 0.0, 1.0); }
-
-}  // namespace
+using namespace synth_detail;
 
 PinholeCamera FullSyntheticSettings::camera() const {
   PinholeCamera camera;
@@ -62,7 +29,7 @@ void FullSyntheticSettings::check() const {
   int_in_range("max-parts", max_parts, 1, 100);
   ordered("min-parts", min_parts, "max-parts", max_parts);
   if (!(std::isfinite(min_part_size) && min_part_size > 0.0)) {
-    fail("min-size", "must be positive (got " + text(min_part_size) + ")");
+    fail_option("min-size", "must be positive (got " + number_text(min_part_size) + ")");
   }
   in_range("max-size", max_part_size, 1e-3, 4.0);
   ordered("min-size", min_part_size, "max-size", max_part_size);
@@ -92,7 +59,7 @@ void FullSyntheticSettings::check() const {
   ordered("min-ambient", min_ambient, "max-ambient", max_ambient);
 
   if (!(std::isfinite(min_crop_scale) && min_crop_scale > 0.0 && min_crop_scale <= 1.0)) {
-    fail("min-crop-scale", "must be in (0, 1] (got " + text(min_crop_scale) + ")");
+    fail_option("min-crop-scale", "must be in (0, 1] (got " + number_text(min_crop_scale) + ")");
   }
   in_range("crop-aspect-change", max_crop_aspect_change, 0.0, 1.0);
   probability("background-flip", background_flip_probability);

@@ -1,7 +1,6 @@
 #include "host/synth/patch_library.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -9,21 +8,11 @@
 
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
+#include "host/synth/part_library.h"
 
 namespace flexsight {
 namespace {
 namespace fs = std::filesystem;
-
-// The object id in a folder name: its last run of digits ("obj_000005" -> 5); -1 when
-// it has none.
-int object_id_of_folder(const std::string& name) {
-  size_t end = name.size();
-  while (end > 0 && !std::isdigit(static_cast<unsigned char>(name[end - 1]))) --end;
-  size_t begin = end;
-  while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1]))) --begin;
-  if (begin == end || end - begin > 9) return -1;
-  return std::stoi(name.substr(begin, end - begin));
-}
 
 bool is_mask_file(const fs::path& path) {
   const std::string stem = path.stem().string();
@@ -88,7 +77,7 @@ std::vector<Patch> load_patch_library(const std::string& folder) {
   std::sort(files.begin(), files.end());
   std::vector<Patch> patches;
   for (const fs::path& file : files) {
-    const int obj_id = object_id_of_folder(file.parent_path().filename().string());
+    const int obj_id = object_id_from_name(file.parent_path().filename().string());
     if (obj_id < 0) {
       throw InputError(file.string(), "its folder's name holds no object id (expected "
                                       "obj_000005/ or similar)");

@@ -1,0 +1,48 @@
+#include "host/synth/semi_synthetic_settings.h"
+
+#include <cmath>
+
+#include "host/synth/settings_checks.h"
+
+namespace flexsight {
+
+using namespace synth_detail;
+
+PinholeCamera SemiSyntheticSettings::camera() const {
+  PinholeCamera camera;
+  camera.width = width;
+  camera.height = height;
+  camera.fx = camera.fy = width;
+  camera.cx = 0.5 * (width - 1);
+  camera.cy = 0.5 * (height - 1);
+  return camera;
+}
+
+void SemiSyntheticSettings::check() const {
+  int_in_range("width", width, 8, 16384);
+  int_in_range("height", height, 8, 16384);
+  int_in_range("min-parts", min_parts, 1, 100);
+  int_in_range("max-parts", max_parts, 1, 100);
+  ordered("min-parts", min_parts, "max-parts", max_parts);
+  in_range("min-size", min_part_size, 1e-3, 4.0);
+  in_range("max-size", max_part_size, 1e-3, 4.0);
+  ordered("min-size", min_part_size, "max-size", max_part_size);
+  in_range("max-rotation", max_rotation_degrees, 0.0, 180.0);
+  probability("mirror", mirror_probability);
+  in_range("max-brightness", max_brightness, 0.0, 255.0);
+  in_range("min-contrast", min_contrast, 0.0, 10.0);
+  in_range("max-contrast", max_contrast, 0.0, 10.0);
+  ordered("min-contrast", min_contrast, "max-contrast", max_contrast);
+  probability("min-visible", min_visible_fraction);
+  int_in_range("pose-attempts", pose_attempts, 1, 1000);
+  if (!(std::isfinite(min_crop_scale) && min_crop_scale > 0.0 && min_crop_scale <= 1.0)) {
+    fail_option("min-crop-scale", "must be in (0, 1] (got " + number_text(min_crop_scale) + ")");
+  }
+  in_range("crop-aspect-change", max_crop_aspect_change, 0.0, 1.0);
+  probability("background-flip", background_flip_probability);
+  probability("blur-probability", blur_probability);
+  in_range("max-blur", max_blur_sigma, 0.0, 10.0);
+  in_range("max-noise", max_noise_sigma, 0.0, 100.0);
+}
+
+}  // namespace flexsight
