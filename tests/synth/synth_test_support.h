@@ -13,6 +13,7 @@
 #include <string>
 
 #include "host/dataset/annotated_image.h"
+#include "host/dataset/gt_info.h"
 #include "host/synth/background_library.h"
 #include "host/synth/part_library.h"
 
@@ -71,13 +72,6 @@ inline void write_text(const std::string& path, const std::string& text) {
 // A tetrahedron with sides of about 10 mm, as OBJ text.
 inline std::string tetrahedron_obj() {
   return "v 0 0 0\nv 10 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-}
-
-// The box of the non-zero pixels of a mask, BOP style.
-inline BopBox mask_box(const cv::Mat& mask) {
-  const cv::Rect r = cv::boundingRect(mask);
-  if (r.empty()) return {};
-  return {r.x, r.y, r.width, r.height};
 }
 
 // The flip matrix of an image (F = F^-1): the pose the renderer used is F times the
