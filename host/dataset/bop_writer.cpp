@@ -21,7 +21,7 @@ namespace {
 // 0 and 255, use zlib's run-length strategy: as small as level 3's files, far faster.
 const std::vector<int> kPngParams{cv::IMWRITE_PNG_COMPRESSION, 1};
 const std::vector<int> kMaskPngParams{cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
-                                      cv::IMWRITE_PNG_STRATEGY_RLE};
+                                      cv::IMWRITE_PNG_STRATEGY_RLE, cv::IMWRITE_PNG_BILEVEL, 1};
 
 // The 16-bit depth PNG's values: round(depth_mm / depth_scale), 0 where depth is 0.
 cv::Mat encode_depth(const cv::Mat& depth, double depth_scale, const cv::Size& size,
