@@ -1,0 +1,406 @@
+"""Train SSD-MobileNetV2 on a COCO-instances data set from `flexsight synth` by transfer learning.
+
+Default (the paper's set-up): the ImageNet MobileNetV2 feature extractor is frozen, so its two
+feature maps are computed once per image and cached on disk (float16 memmaps, 672 KB per image),
+then only the extra layers and the box/class predictors are trained, many epochs, fast.
+--train-all trains every layer from the images instead (no cache; far slower on a CPU).
+With the cache no augmentation can happen here: the generator already draws flips, rotation,
+blur and noise per image, so diversity comes from generating more images.
+
+Loss (the original SSD's): smooth L1 on the encoded boxes of matched anchors (IoU >= 0.5, plus the
+best anchor of every ground-truth box) and softmax cross-entropy with hard-negative mining at
+3 negatives per positive, both divided by the number of positives.
+
+Writes into --out: model.pt (checkpoint), model.onnx (checked in cv2.dnn when importable),
+anchors.txt, labels.txt, log.csv, loss.png, summary.json (timings, losses, AP@0.5 of the
+validation images and of as many training images).
+
+    python3 train.py --data DIR --out RUN --epochs 30
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import hashlib
+import json
+import math
+import random
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+from PIL import Image
+
+import anchors as anc
+from ssd_model import MODELS_DIR, SSDMobileNetV2, build_model
+
+CL = torch.channels_last  # NHWC: PyTorch's CPU convolutions (oneDNN) run ~2x faster in it
+NEG_POS_RATIO = 3
+FEATURE_RATE = []  # images/s of the last feature caching, for summary.json
+MIN_NEGATIVES = 8  # per image, so that images without parts still teach background
+
+
+# ----------------------------------------------------------------------------------------------
+# Data
+
+class CocoSet:
+    """Images and boxes of a COCO instances file; boxes normalised, class 1..C by sorted id."""
+
+    def __init__(self, coco_path: Path):
+        coco = json.loads(coco_path.read_text())
+        self.root = coco_path.parent
+        self.categories = sorted(coco["categories"], key=lambda c: c["id"])
+        index = {c["id"]: i + 1 for i, c in enumerate(self.categories)}
+        self.images = sorted(coco["images"], key=lambda im: im["id"])
+        boxes = {im["id"]: [] for im in self.images}
+        for a in coco["annotations"]:
+            if a.get("iscrowd", 0) or a["bbox"][2] <= 0 or a["bbox"][3] <= 0:
+                continue
+            boxes[a["image_id"]].append((a["bbox"], index[a["category_id"]]))
+        self.gt = []
+        for im in self.images:
+            w, h = float(im["width"]), float(im["height"])
+            c = np.array([[y / h, x / w, (y + bh) / h, (x + bw) / w]
+                          for (x, y, bw, bh), _ in boxes[im["id"]]], np.float32).reshape(-1, 4)
+            l = np.array([k for _, k in boxes[im["id"]]], np.int64)
+            self.gt.append((c, l))
+
+    def __len__(self):
+        return len(self.images)
+
+    def path(self, i: int) -> Path:
+        return self.root / self.images[i]["file_name"]
+
+    def image_tensor(self, i: int, size: int) -> torch.Tensor:
+        img = Image.open(self.path(i)).convert("RGB")
+        if img.size != (size, size):
+            img = img.resize((size, size), Image.BILINEAR)
+        x = np.asarray(img, np.float32) / 127.5 - 1.0
+        return torch.from_numpy(x.transpose(2, 0, 1).copy())
+
+    def images_tensor(self, idx, size: int) -> torch.Tensor:
+        return torch.stack([self.image_tensor(int(i), size) for i in idx])
+
+
+def match_all(data: CocoSet, anchors: np.ndarray):
+    labels = np.zeros((len(data), len(anchors)), np.int64)
+    targets = np.zeros((len(data), len(anchors), 4), np.float32)
+    for i, (boxes, cls) in enumerate(data.gt):
+        labels[i], targets[i] = anc.match(boxes, cls, anchors)
+    return torch.from_numpy(labels), torch.from_numpy(targets)
+
+
+# ----------------------------------------------------------------------------------------------
+# Feature cache
+
+def cache_key(data: CocoSet, backbone: str, image_size: int) -> str:
+    h = hashlib.sha256()
+    h.update(("%s %d %s\n" % (backbone, image_size, MODELS_DIR)).encode())
+    for im in data.images:
+        st = (data.root / im["file_name"]).stat()
+        h.update(("%s %d %d\n" % (im["file_name"], st.st_size, int(st.st_mtime))).encode())
+    return h.hexdigest()[:16]
+
+
+def cache_features(model: SSDMobileNetV2, data: CocoSet, cache_dir: Path, key: str,
+                   batch: int = 16):
+    """Two float16 memmaps, channels last: [N, 19, 19, 576] and [N, 10, 10, 1280] (the layout the
+    channels-last detector reads without a copy); reused when the key (images, backbone)
+    matches, recomputed otherwise."""
+    cache_dir.mkdir(parents=True, exist_ok=True)
+    meta = cache_dir / "cache.json"
+    shapes = [(len(data), s, s, c) for c, s in zip(model.backbone.feature_channels,
+                                                    model.backbone.feature_sizes)]
+    paths = [cache_dir / "f0.npy", cache_dir / "f1.npy"]
+    if meta.exists() and json.loads(meta.read_text()).get("key") == key:
+        maps = [np.load(p, mmap_mode="r") for p in paths]
+        if all(m.shape == s for m, s in zip(maps, shapes)):
+            print("features: reusing the cache in %s" % cache_dir)
+            return maps
+    meta.unlink(missing_ok=True)
+    maps = [np.lib.format.open_memmap(p, mode="w+", dtype=np.float16, shape=s)
+            for p, s in zip(paths, shapes)]
+    backbone = model.backbone.eval()
+    t0, c0, n = time.time(), time.process_time(), len(data)
+    with torch.no_grad():
+        for start in range(0, n, batch):
+            idx = range(start, min(start + batch, n))
+            x = data.images_tensor(idx, model.image_size).contiguous(memory_format=CL)
+            for m, f in zip(maps, backbone(x)):
+                m[start:start + len(idx)] = f.permute(0, 2, 3, 1).half().numpy()
+            done = start + len(idx)
+            if done == n or (start // batch) % 10 == 0:
+                print("features: %d/%d images, %.1f images/s" % (done, n, done / (time.time() - t0)),
+                      flush=True)
+    for m in maps:
+        m.flush()
+    meta.write_text(json.dumps({"key": key, "count": n}))
+    wall, cpu = time.time() - t0, time.process_time() - c0
+    FEATURE_RATE[:] = [n / wall]
+    print("features: cached %d images in %.1f s: %.1f images/s, %.2f CPU s per image; %.0f MB"
+          % (n, wall, n / wall, cpu / n, sum(p.stat().st_size for p in paths) / 1e6))
+    return [np.load(p, mmap_mode="r") for p in paths]
+
+
+# ----------------------------------------------------------------------------------------------
+# Loss
+
+def ssd_loss(boxes, logits, labels, targets):
+    """Returns (localisation, classification), each summed and divided by the positives."""
+    pos = labels > 0
+    num_pos = pos.sum(1)
+    n = num_pos.sum().clamp(min=1).float()
+    loc = F.smooth_l1_loss(boxes[pos], targets[pos], reduction="sum", beta=1.0) / n
+    ce = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
+                         reduction="none").view(labels.shape)
+    neg_loss = ce.detach().masked_fill(pos, -1.0)
+    rank = neg_loss.argsort(1, descending=True).argsort(1)
+    num_neg = (NEG_POS_RATIO * num_pos).clamp(min=MIN_NEGATIVES, max=labels.shape[1] - 1)
+    neg = rank < num_neg[:, None]
+    cls = (ce * (pos | neg)).sum() / n
+    return loc, cls
+
+
+# ----------------------------------------------------------------------------------------------
+# Training
+
+def seed_everything(seed: int) -> None:
+    random.seed(seed)
+    np.random.seed(seed)
+    torch.manual_seed(seed)
+
+
+def split(n: int, val_fraction: float, seed: int):
+    perm = np.random.RandomState(seed).permutation(n)
+    nv = max(1, int(round(n * val_fraction))) if n > 1 and val_fraction > 0 else 0
+    return np.sort(perm[nv:]), np.sort(perm[:nv])
+
+
+def batch_inputs(args, model, data, feats, idx):
+    if feats is None:
+        return data.images_tensor(idx, model.image_size).contiguous(memory_format=CL)
+    # NHWC float16 on disk -> NCHW float32 tensors with channels-last strides, no copy but the cast.
+    return tuple(torch.from_numpy(f[idx]).float().permute(0, 3, 1, 2) for f in feats)
+
+
+def forward(model, inputs, train_all: bool):
+    return model(inputs) if train_all else model.detector(*inputs)
+
+
+def evaluate(args, model, data, feats, labels, targets, idx):
+    model.eval()
+    tot = np.zeros(2)
+    with torch.no_grad():
+        for s in range(0, len(idx), args.batch_size):
+            b = idx[s:s + args.batch_size]
+            out = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            loc, cls = ssd_loss(*out, labels[b], targets[b])
+            tot += np.array([loc.item(), cls.item()]) * len(b)
+    return tot / max(len(idx), 1)
+
+
+def average_precision(args, model, data, feats, idx):
+    """AP@0.5 (detect_eval) of the model on the images idx."""
+    from detect_eval import average_precision_50, decode_detections
+    anchors = anc.generate()
+    model.eval()
+    dets = []
+    with torch.no_grad():
+        for s in range(0, len(idx), args.batch_size):
+            b = idx[s:s + args.batch_size]
+            boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            dets += [decode_detections(x.numpy(), y.numpy(), anchors) for x, y in zip(boxes, logits)]
+    return average_precision_50(dets, [data.gt[i] for i in idx], model.detector.num_classes)[0]
+
+
+def finite_or_null(v):
+    """Plain JSON: NaN (no value, e.g. the speed of epoch 0) becomes null, numpy scalars float."""
+    if isinstance(v, dict):
+        return {k: finite_or_null(x) for k, x in v.items()}
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    return v
+
+
+def plot(log_rows, path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ep = [r["epoch"] for r in log_rows]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(ep, [r["train_loss"] for r in log_rows], "o-", label="train")
+    if any(r["val_loss"] == r["val_loss"] for r in log_rows):
+        ax.plot(ep, [r["val_loss"] for r in log_rows], "s-", label="validation")
+    ax.set_xlabel("epoch")
+    ax.set_ylabel("SSD loss (smooth L1 + cross-entropy)")
+    ax.set_yscale("log")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def write_outputs(model, data, out: Path) -> None:
+    anc.write_sidecar(out / "anchors.txt")
+    lines = ["0 0 background"] + ["%d %d %s" % (i + 1, c["id"], c.get("name", c["id"]))
+                                  for i, c in enumerate(data.categories)]
+    (out / "labels.txt").write_text("\n".join(lines) + "\n")
+    from export_onnx import check_with_opencv, export
+    export(model, out / "model.onnx")
+    try:
+        import cv2  # noqa: F401
+    except ImportError:
+        print("onnx: wrote %s; cv2 is not importable, not checked in OpenCV" % (out / "model.onnx"))
+        return
+    rgb = np.asarray(Image.open(data.path(0)).convert("RGB"))
+    diff = check_with_opencv(model, out / "model.onnx", rgb)
+    print("onnx: wrote %s; cv2.dnn reads it, max|OpenCV - PyTorch| = %.2e" % (out / "model.onnx", diff))
+    if diff > 1e-3:
+        raise RuntimeError("OpenCV's forward differs from PyTorch's by %.2e" % diff)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--data", type=Path, required=True,
+                    help="folder written by `flexsight synth` (reads DATA/coco_instances.json)")
+    ap.add_argument("--out", type=Path, required=True, help="run folder for the outputs")
+    ap.add_argument("--cache", type=Path, help="feature cache folder (default OUT/features)")
+    ap.add_argument("--epochs", type=int, default=30)
+    ap.add_argument("--batch-size", type=int, default=32)
+    ap.add_argument("--lr", type=float, default=1e-3, help="peak learning rate (Adam)")
+    ap.add_argument("--weight-decay", type=float, default=4e-5)
+    ap.add_argument("--val-fraction", type=float, default=0.1)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--threads", type=int, default=2, help="torch CPU threads")
+    ap.add_argument("--max-minutes", type=float, default=0, help="stop after this long (0: no limit)")
+    ap.add_argument("--backbone", choices=("imagenet", "oidv4"), default="imagenet",
+                    help="feature extractor weights: ImageNet MobileNetV2 (the paper) or the"
+                         " OIDv4 detector's")
+    ap.add_argument("--class-heads", choices=("random", "oidv4"), default="random")
+    ap.add_argument("--train-all", action="store_true",
+                    help="train the feature extractor too, from images, without the cache")
+    ap.add_argument("--no-export", action="store_true", help="skip the ONNX export at the end")
+    args = ap.parse_args(argv)
+
+    seed_everything(args.seed)
+    torch.set_num_threads(args.threads)
+    coco_path = args.data / "coco_instances.json"
+    if not coco_path.exists():
+        print("error: %s does not exist" % coco_path, file=sys.stderr)
+        return 2
+    args.out.mkdir(parents=True, exist_ok=True)
+    data = CocoSet(coco_path)
+    print("data: %d images, %d boxes, %d categories from %s"
+          % (len(data), sum(len(g[1]) for g in data.gt), len(data.categories), coco_path))
+    model = build_model(len(data.categories), args.backbone, args.class_heads)
+    model = model.to(memory_format=CL)
+    anchors = anc.generate()
+    labels, targets = match_all(data, anchors)
+    print("matching: %.1f positive anchors per image" % (labels > 0).sum(1).float().mean())
+    train_idx, val_idx = split(len(data), args.val_fraction, args.seed)
+    print("split: %d training, %d validation images" % (len(train_idx), len(val_idx)))
+
+    if args.train_all:
+        feats = None
+        params = [{"params": model.backbone.parameters(), "lr": args.lr * 0.1},
+                  {"params": model.detector.parameters(), "lr": args.lr}]
+    else:
+        key = cache_key(data, args.backbone, model.image_size)
+        feats = cache_features(model, data, args.cache or args.out / "features", key)
+        for p in model.backbone.parameters():
+            p.requires_grad_(False)
+        params = [{"params": model.detector.parameters(), "lr": args.lr}]
+    opt = torch.optim.AdamW(params, lr=args.lr, weight_decay=args.weight_decay)
+    steps_per_epoch = max(1, math.ceil(len(train_idx) / args.batch_size))
+    total = steps_per_epoch * args.epochs
+    warmup = max(1, min(total // 20, 200))
+    base = [g["lr"] for g in opt.param_groups]
+
+    rng = np.random.RandomState(args.seed)
+    log_rows, step, t_start, c_start = [], 0, time.time(), time.process_time()
+    # Epoch 0: the losses of the starting point (training loss on at most 256 images).
+    tr0 = evaluate(args, model, data, feats, labels, targets, train_idx[:256])
+    va0 = evaluate(args, model, data, feats, labels, targets, val_idx) if len(val_idx) else [math.nan] * 2
+    log_rows.append({"epoch": 0, "train_loss": float(np.sum(tr0)), "train_loc": tr0[0],
+                     "train_cls": tr0[1], "val_loss": float(np.sum(va0)), "val_loc": va0[0],
+                     "val_cls": va0[1], "images_per_s": math.nan, "elapsed_s": 0.0})
+    print("epoch   0: train %.3f (loc %.3f cls %.3f)  val %.3f (loc %.3f cls %.3f)  before training"
+          % (log_rows[0]["train_loss"], tr0[0], tr0[1], log_rows[0]["val_loss"], va0[0], va0[1]))
+    images_trained, train_time = 0, 0.0
+    for epoch in range(1, args.epochs + 1):
+        model.train()
+        if not args.train_all:
+            model.backbone.eval()
+        perm = rng.permutation(train_idx)
+        sums, seen, t_epoch = np.zeros(2), 0, time.time()
+        for s in range(0, len(perm), args.batch_size):
+            b = np.sort(perm[s:s + args.batch_size])  # sorted: memmap reads in file order
+            f = min(1.0, (step + 1) / warmup) * 0.5 * (1 + math.cos(math.pi * step / total))
+            for g, lr in zip(opt.param_groups, base):
+                g["lr"] = lr * f
+            out = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            loc, cls = ssd_loss(*out, labels[b], targets[b])
+            loss = loc + cls
+            opt.zero_grad()
+            loss.backward()
+            opt.step()
+            sums += np.array([loc.item(), cls.item()]) * len(b)
+            seen += len(b)
+            step += 1
+            if args.train_all and step % 10 == 0:
+                print("  step %d: loss %.3f (%.1f images/s)"
+                      % (step, loss.item(), seen / (time.time() - t_epoch)), flush=True)
+        dt = time.time() - t_epoch
+        images_trained += seen
+        train_time += dt
+        tr = sums / max(seen, 1)
+        va = evaluate(args, model, data, feats, labels, targets, val_idx) if len(val_idx) else [math.nan] * 2
+        row = {"epoch": epoch, "train_loss": tr.sum(), "train_loc": tr[0], "train_cls": tr[1],
+               "val_loss": float(np.sum(va)), "val_loc": va[0], "val_cls": va[1],
+               "images_per_s": seen / dt, "elapsed_s": time.time() - t_start}
+        log_rows.append(row)
+        print("epoch %3d: train %.3f (loc %.3f cls %.3f)  val %.3f (loc %.3f cls %.3f)  "
+              "%.0f images/s  %.0f s" % (epoch, row["train_loss"], tr[0], tr[1], row["val_loss"],
+                                         va[0], va[1], row["images_per_s"], row["elapsed_s"]),
+              flush=True)
+        if args.max_minutes and time.time() - t_start > args.max_minutes * 60:
+            print("stopping: --max-minutes %.1f reached" % args.max_minutes)
+            break
+
+    with open(args.out / "log.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(log_rows[0].keys()))
+        w.writeheader()
+        w.writerows(log_rows)
+    plot(log_rows, args.out / "loss.png")
+    print("training: %d steps, %.1f images/s, %.3f CPU s per image (validation included), loss %.3f -> %.3f"
+          " (validation %.3f -> %.3f)"
+          % (step, images_trained / max(train_time, 1e-9),
+             (time.process_time() - c_start) / max(images_trained, 1), log_rows[0]["train_loss"],
+             log_rows[-1]["train_loss"], log_rows[0]["val_loss"], log_rows[-1]["val_loss"]))
+    ap_train = average_precision(args, model, data, feats, train_idx[:len(val_idx) or 200])
+    ap_val = average_precision(args, model, data, feats, val_idx) if len(val_idx) else math.nan
+    print("AP@0.5: validation %.3f, training %.3f (%d images each at most)"
+          % (ap_val, ap_train, len(val_idx) or 200))
+    summary = {"images": len(data), "train_images": len(train_idx), "val_images": len(val_idx),
+               "epochs": log_rows[-1]["epoch"], "steps": step,
+               "train_images_per_s": images_trained / max(train_time, 1e-9),
+               "first": log_rows[0], "last": log_rows[-1], "ap50_val": ap_val, "ap50_train": ap_train}
+    if feats is not None and FEATURE_RATE:
+        summary["feature_cache_images_per_s"] = FEATURE_RATE[0]
+    (args.out / "summary.json").write_text(json.dumps(finite_or_null(summary), indent=1) + "\n")
+    model = model.eval().to(memory_format=torch.contiguous_format)
+    torch.save({"model": model.state_dict(), "num_classes": model.detector.num_classes,
+                "categories": data.categories, "args": {k: str(v) for k, v in vars(args).items()}},
+               args.out / "model.pt")
+    if not args.no_export:
+        write_outputs(model, data, args.out)
+    print("wrote %s" % args.out)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,27 @@
+"""Shared set-up of the detection Python tests: the scripts on sys.path and the shared model
+folder from the command line (tests/CMakeLists.txt passes FLEXSIGHT_DETECTION_DATA/models).
+A missing model file fails the test; it never skips."""
+import os
+import sys
+from pathlib import Path
+
+SCRIPTS = Path(__file__).resolve().parents[3] / "scripts" / "detect"
+sys.path.insert(0, str(SCRIPTS))
+
+
+def models_dir_from_argv() -> Path:
+    """Pops `--models DIR` from sys.argv (before unittest parses it) and checks the files."""
+    if "--models" not in sys.argv:
+        sys.exit("usage: %s --models DIR [unittest options]" % sys.argv[0])
+    i = sys.argv.index("--models")
+    models = Path(sys.argv[i + 1])
+    del sys.argv[i:i + 2]
+    needed = ["ssd_mobilenetv2_oidv4/object_detection_ssd_mobilenetv2_oidv4_fp16.tflite",
+              "ssd_mobilenetv2_oidv4/object_detection_oidv4_labelmap.txt",
+              "mobilenet_imagenet/tf2_mobilenet_v2_1.0_224_ptq.tflite",
+              "mobilenet_imagenet/mobilenet_v1_1.0_224_quant_embedding_extractor.tflite"]
+    missing = [n for n in needed if not (models / n).is_file()]
+    if missing:
+        sys.exit("FAIL: shared model files missing under %s: %s" % (models, ", ".join(missing)))
+    os.environ["FLEXSIGHT_DETECTION_MODELS"] = str(models)  # read by ssd_model at import
+    return models

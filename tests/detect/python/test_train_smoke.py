@@ -1,0 +1,63 @@
+"""End to end on a tiny generated data set: flexsight synth full, feature cache, a few epochs
+of training (the training loss must fall), and every output of a run."""
+import csv
+import json
+import shutil
+import sys
+import unittest
+from pathlib import Path
+
+from detect_test_paths import models_dir_from_argv
+
+MODELS = models_dir_from_argv()
+import subprocess  # noqa: E402
+
+import train  # noqa: E402
+
+
+def pop_arg(name: str) -> Path:
+    i = sys.argv.index(name)
+    value = Path(sys.argv[i + 1])
+    del sys.argv[i:i + 2]
+    return value
+
+
+FLEXSIGHT = pop_arg("--flexsight")
+WORK = pop_arg("--work")
+
+
+class TrainSmoke(unittest.TestCase):
+    def test_run(self):
+        shutil.rmtree(WORK, ignore_errors=True)
+        WORK.mkdir(parents=True)
+        data, run = WORK / "data", WORK / "run"
+        subprocess.run([str(FLEXSIGHT), "synth", "full", "--count", "16", "--threads", "2",
+                        "--no-depth", "--no-masks", "--cad", str(MODELS.parent / "cad/tless"),
+                        "--backgrounds", str(MODELS.parent / "backgrounds"), "-o", str(data)],
+                       check=True, stdout=subprocess.DEVNULL)
+        rc = train.main(["--data", str(data), "--out", str(run), "--epochs", "4",
+                         "--batch-size", "4", "--val-fraction", "0.25", "--seed", "3"])
+        self.assertEqual(rc, 0)
+        with open(run / "log.csv") as fh:
+            rows = list(csv.DictReader(fh))
+        self.assertEqual([int(r["epoch"]) for r in rows], [0, 1, 2, 3, 4])
+        self.assertLess(float(rows[-1]["train_loss"]), float(rows[0]["train_loss"]))
+        for name in ("model.pt", "model.onnx", "anchors.txt", "labels.txt", "loss.png",
+                     "summary.json", "features/f0.npy", "features/f1.npy"):
+            self.assertTrue((run / name).is_file(), name)
+        summary = json.loads((run / "summary.json").read_text(),
+                             parse_constant=lambda c: self.fail("summary.json holds " + c))
+        self.assertEqual((summary["train_images"], summary["val_images"]), (12, 4))
+        self.assertTrue(0.0 <= summary["ap50_val"] <= 1.0)
+        self.assertEqual(len((run / "anchors.txt").read_text().splitlines()), 1918)
+        labels = (run / "labels.txt").read_text().splitlines()
+        self.assertEqual(len(labels), 24)
+        self.assertEqual(labels[0], "0 0 background")
+        self.assertEqual(labels[1], "1 2 obj_02")
+        # A second run on the same images reuses the cache.
+        self.assertEqual(train.main(["--data", str(data), "--out", str(run), "--epochs", "1",
+                                     "--batch-size", "4", "--no-export"]), 0)
+
+
+if __name__ == "__main__":
+    unittest.main()
