@@ -10,6 +10,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
   libembree-dev libassimp-dev nlohmann-json3-dev
   python3 python3-venv python3-numpy python3-pil python3-skimage python3-meshio python3-matplotlib
+  python3-torch python3-torchvision python3-opencv python3-flatbuffers python3-onnx
 )
 missing=()
 for package in "${packages[@]}"; do
