@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <set>
 #include <vector>
 
 #include "fallback/detect/ssd_reference.h"
 #include "host/detect/ssd_postprocess.h"
+#include "tests/detect/same_detections.h"
 #include "tests/detect/ssd_cases.h"
 
 namespace flexsight {
@@ -17,6 +17,7 @@ namespace {
 
 using testing_support::case_name;
 using testing_support::make_ssd_inputs;
+using testing_support::same_detections;
 using testing_support::SsdCase;
 using testing_support::SsdInputs;
 using testing_support::SsdScene;
@@ -91,27 +92,6 @@ size_t unsuppressed_count(const SsdInputs& in, const SsdPostprocessParams& param
     total += std::min(count, params.top_k_per_class);
   }
   return std::min(total, static_cast<size_t>(params.max_detections));
-}
-
-::testing::AssertionResult same_detections(const std::vector<Detection>& expected,
-                                           const std::vector<Detection>& actual) {
-  if (expected.size() != actual.size()) {
-    return ::testing::AssertionFailure()
-           << expected.size() << " detections expected, " << actual.size() << " found";
-  }
-  for (size_t i = 0; i < expected.size(); ++i) {
-    const Detection& e = expected[i];
-    const Detection& a = actual[i];
-    if (e.class_id != a.class_id || e.anchor != a.anchor ||
-        std::memcmp(&e.score, &a.score, sizeof e.score) != 0 ||
-        std::memcmp(e.box, a.box, sizeof e.box) != 0) {
-      return ::testing::AssertionFailure()
-             << "detection " << i << ": expected class " << e.class_id << " anchor " << e.anchor
-             << " score " << e.score << ", got class " << a.class_id << " anchor " << a.anchor
-             << " score " << a.score;
-    }
-  }
-  return ::testing::AssertionSuccess();
 }
 
 class SsdNmsCases : public ::testing::TestWithParam<SsdCase> {};

@@ -3,38 +3,21 @@
 // reallocated); and the backend front on --device opencl.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <vector>
 
 #include "host/detect/opencl_ssd_postprocessor.h"
 #include "host/detect/ssd_postprocessor.h"
 #include "tests/detect/opencl/ssd_device_fixture.h"
+#include "tests/detect/same_detections.h"
 #include "tests/detect/ssd_cases.h"
 
 namespace flexsight::opencl::ssd_test {
 namespace {
 
+using testing_support::same_detections;
 using testing_support::SsdCase;
 using testing_support::SsdInputs;
 using testing_support::SsdScene;
-
-::testing::AssertionResult same_detections(const std::vector<Detection>& expected,
-                                           const std::vector<Detection>& actual) {
-  if (expected.size() != actual.size()) {
-    return ::testing::AssertionFailure()
-           << expected.size() << " detections expected, " << actual.size() << " found";
-  }
-  for (size_t i = 0; i < expected.size(); ++i) {
-    if (std::memcmp(&expected[i], &actual[i], sizeof(Detection)) != 0) {
-      return ::testing::AssertionFailure()
-             << "detection " << i << ": reference class " << expected[i].class_id << " anchor "
-             << expected[i].anchor << " score " << expected[i].score << ", OpenCL class "
-             << actual[i].class_id << " anchor " << actual[i].anchor << " score "
-             << actual[i].score;
-    }
-  }
-  return ::testing::AssertionSuccess();
-}
 
 class SsdOpenClPipeline : public ::testing::TestWithParam<SsdCase> {};
 
