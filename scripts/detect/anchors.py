@@ -58,23 +58,21 @@ def generate() -> np.ndarray:
 
 
 def write_sidecar(path, anchors: np.ndarray | None = None) -> None:
-    """Text file: a header line 'ssd_anchors <count> ycenter xcenter h w', then one line per
-    anchor with four '%.9g' floats (float32 round-trips exactly)."""
+    """CSV the C++ post-processing reads (host/detect read_anchor_file): the header line
+    'ycenter,xcenter,height,width', then one anchor per line in output-row order, four
+    '%.9g' floats (float32 round-trips exactly)."""
     anchors = generate() if anchors is None else anchors
-    lines = ["ssd_anchors %d ycenter xcenter h w" % len(anchors)]
-    lines += ["%.9g %.9g %.9g %.9g" % tuple(float(v) for v in a) for a in anchors]
-    Path(path).write_text("\n".join(lines) + "\n")
+    np.savetxt(path, anchors, fmt="%.9g", delimiter=",", header="ycenter,xcenter,height,width",
+               comments="")
 
 
 def read_sidecar(path) -> np.ndarray:
     lines = Path(path).read_text().splitlines()
-    head = lines[0].split()
-    if len(head) < 2 or head[0] != "ssd_anchors":
-        raise ValueError("%s: first line must start with 'ssd_anchors <count>'" % path)
-    count = int(head[1])
-    rows = np.array([[float(v) for v in line.split()] for line in lines[1:1 + count]], np.float32)
-    if rows.shape != (count, 4):
-        raise ValueError("%s: expected %d lines of 4 numbers, read %s" % (path, count, rows.shape))
+    if not lines or lines[0] != "ycenter,xcenter,height,width":
+        raise ValueError("%s: first line must be 'ycenter,xcenter,height,width'" % path)
+    rows = np.array([[float(v) for v in line.split(",")] for line in lines[1:] if line], np.float32)
+    if rows.ndim != 2 or rows.shape[1] != 4:
+        raise ValueError("%s: expected lines of 4 numbers, read %s" % (path, rows.shape))
     return rows
 
 
@@ -140,7 +138,7 @@ def match(gt_corners: np.ndarray, gt_labels: np.ndarray, anchors: np.ndarray,
 
 def main(argv=None) -> int:
     import argparse
-    ap = argparse.ArgumentParser(description="Write the 1917 SSD anchors as a text sidecar.")
+    ap = argparse.ArgumentParser(description="Write the 1917 SSD anchors as the CSV sidecar the C++ post-processing reads.")
     ap.add_argument("output")
     args = ap.parse_args(argv)
     write_sidecar(args.output)

@@ -12,7 +12,7 @@ best anchor of every ground-truth box) and softmax cross-entropy with hard-negat
 3 negatives per positive, both divided by the number of positives.
 
 Writes into --out: model.pt (checkpoint), model.onnx (checked in cv2.dnn when importable),
-anchors.txt, labels.txt, log.csv, loss.png, summary.json (timings, losses, AP@0.5 of the
+anchors.csv, labels.txt, log.csv, loss.png, summary.json (timings, losses, AP@0.5 of the
 validation images and of as many training images).
 
     python3 train.py --data DIR --out RUN --epochs 30
@@ -245,7 +245,7 @@ def plot(log_rows, path: Path) -> None:
 
 
 def write_outputs(model, data, out: Path) -> None:
-    anc.write_sidecar(out / "anchors.txt")
+    anc.write_sidecar(out / "anchors.csv")
     lines = ["0 0 background"] + ["%d %d %s" % (i + 1, c["id"], c.get("name", c["id"]))
                                   for i, c in enumerate(data.categories)]
     (out / "labels.txt").write_text("\n".join(lines) + "\n")

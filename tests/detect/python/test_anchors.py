@@ -47,10 +47,10 @@ class Sidecar(unittest.TestCase):
     def test_round_trip_is_exact(self):
         a = anc.generate()
         with tempfile.TemporaryDirectory() as d:
-            p = Path(d) / "anchors.txt"
+            p = Path(d) / "anchors.csv"
             anc.write_sidecar(p, a)
             lines = p.read_text().splitlines()
-            self.assertEqual(lines[0], "ssd_anchors 1917 ycenter xcenter h w")
+            self.assertEqual(lines[0], "ycenter,xcenter,height,width")
             self.assertEqual(len(lines), 1918)
             np.testing.assert_array_equal(anc.read_sidecar(p), a)
 
@@ -58,7 +58,7 @@ class Sidecar(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             p = Path(d) / "bad.txt"
             p.write_text("1917\n")
-            with self.assertRaisesRegex(ValueError, "ssd_anchors"):
+            with self.assertRaisesRegex(ValueError, "ycenter,xcenter,height,width"):
                 anc.read_sidecar(p)
 
 

@@ -42,14 +42,14 @@ class TrainSmoke(unittest.TestCase):
             rows = list(csv.DictReader(fh))
         self.assertEqual([int(r["epoch"]) for r in rows], [0, 1, 2, 3, 4])
         self.assertLess(float(rows[-1]["train_loss"]), float(rows[0]["train_loss"]))
-        for name in ("model.pt", "model.onnx", "anchors.txt", "labels.txt", "loss.png",
+        for name in ("model.pt", "model.onnx", "anchors.csv", "labels.txt", "loss.png",
                      "summary.json", "features/f0.npy", "features/f1.npy"):
             self.assertTrue((run / name).is_file(), name)
         summary = json.loads((run / "summary.json").read_text(),
                              parse_constant=lambda c: self.fail("summary.json holds " + c))
         self.assertEqual((summary["train_images"], summary["val_images"]), (12, 4))
         self.assertTrue(0.0 <= summary["ap50_val"] <= 1.0)
-        self.assertEqual(len((run / "anchors.txt").read_text().splitlines()), 1918)
+        self.assertEqual(len((run / "anchors.csv").read_text().splitlines()), 1918)
         labels = (run / "labels.txt").read_text().splitlines()
         self.assertEqual(len(labels), 24)
         self.assertEqual(labels[0], "0 0 background")
