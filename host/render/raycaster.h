@@ -95,6 +95,12 @@ struct RaycastOptions {
   // OpenMP threads over 16x16-pixel tiles; 0 takes OpenMP's default. The images are the
   // same bytes for every thread count.
   int threads = 0;
+  // raycast() only: when not empty, only the pixels inside at least one of these
+  // rectangles are cast, and the others left as where no surface is. For a caller that
+  // knows where surfaces can be, such as the union of the instances' projected boxes
+  // (pixels outside it would only cast rays that miss). A pixel that is cast gets the
+  // same bytes as without areas. amodal_masks casts each instance's own box anyway.
+  std::vector<cv::Rect> areas;
 };
 
 struct RaycastImages {
