@@ -100,7 +100,11 @@ class TileShader {
   TileShader(const RenderScene& scene, const RaycastImages& images, const ShadingOptions& options,
              const std::vector<LightView>& lights)
       : scene_(scene), images_(images), options_(options), lights_(lights),
-        shadows_(scene.embree_scene()) {}
+        shadows_(scene.embree_scene()) {
+    // One allocation each per tile, not one per doubling.
+    pixels_.reserve(render_detail::kTileSize * render_detail::kTileSize);
+    terms_.reserve(pixels_.capacity() * lights.size());
+  }
 
   // Calls write(x, y, colour) with the linear RGB colour of each pixel of the tile that
   // has a surface.

@@ -5,9 +5,10 @@
 // packet of neighbouring pixels' rays to the same light together: on the bin scene of
 // bench/render it is about twice as fast as one rtcOccluded1 per ray (docs/render.md).
 //
-// A ray's answer does not depend on its packet, its lane or the other rays: each one is
-// the segment rtcOccluded1 would trace, with the same origin, direction, tnear and tfar,
-// so the shading is the same bytes as with one call per ray (tested).
+// Each ray is the segment rtcOccluded1 would trace, with the same origin, direction,
+// tnear and tfar. Whether something blocks a segment does not depend on the order in
+// which Embree meets the triangles (which a packet's other rays may change), so the
+// shading is the same bytes as with one call per ray (tested to the bit).
 #include <embree3/rtcore.h>
 
 #include <Eigen/Core>
