@@ -27,23 +27,6 @@ void ShadowPackets::reset(int slots) {
   unblocked_.assign(static_cast<size_t>(slots), 0);
 }
 
-void ShadowPackets::add(const Eigen::Vector3f& origin, const Eigen::Vector3f& target, int slot) {
-  const int k = lanes_++;
-  packet_.org_x[k] = origin.x();
-  packet_.org_y[k] = origin.y();
-  packet_.org_z[k] = origin.z();
-  const Eigen::Vector3f direction = target - origin;
-  packet_.dir_x[k] = direction.x();
-  packet_.dir_y[k] = direction.y();
-  packet_.dir_z[k] = direction.z();
-  // The direction spans the whole way to the light: parameters up to just below 1.
-  packet_.tnear[k] = 0.0f;
-  packet_.tfar[k] = 1.0f - 1e-4f;
-  valid_[k] = -1;
-  slot_of_lane_[k] = slot;
-  if (lanes_ == kLanes) flush();
-}
-
 void ShadowPackets::flush() {
   if (lanes_ == 0) return;
   for (int k = lanes_; k < kLanes; ++k) valid_[k] = 0;

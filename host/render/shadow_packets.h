@@ -24,7 +24,23 @@ class ShadowPackets {
   void reset(int slots);
   // Queues the segment from `origin` to `target` (parameters 0 to just below 1, so that
   // the light's own point never blocks it) for slot `slot`; casts the packet when full.
-  void add(const Eigen::Vector3f& origin, const Eigen::Vector3f& target, int slot);
+  // Inline: it runs once per shadow ray.
+  void add(const Eigen::Vector3f& origin, const Eigen::Vector3f& target, int slot) {
+    const int k = lanes_++;
+    packet_.org_x[k] = origin.x();
+    packet_.org_y[k] = origin.y();
+    packet_.org_z[k] = origin.z();
+    const Eigen::Vector3f direction = target - origin;
+    packet_.dir_x[k] = direction.x();
+    packet_.dir_y[k] = direction.y();
+    packet_.dir_z[k] = direction.z();
+    // The direction spans the whole way to the light: parameters up to just below 1.
+    packet_.tnear[k] = 0.0f;
+    packet_.tfar[k] = 1.0f - 1e-4f;
+    valid_[k] = -1;
+    slot_of_lane_[k] = slot;
+    if (lanes_ == kLanes) flush();
+  }
   // Casts what is queued. Call before reading the counts.
   void flush();
   // Segments of slot `slot` that nothing blocks.
