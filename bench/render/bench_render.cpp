@@ -253,11 +253,10 @@ BENCHMARK(BM_Render_Raycast)->Apply(sizes_and_threads);
 BENCHMARK(BM_Render_RawEmbree1)->Apply(sizes_and_threads);
 BENCHMARK(BM_Render_RawEmbree16)->Apply(sizes_and_threads);
 BENCHMARK(BM_Render_AmodalMasks)->Apply(sizes_and_threads);
+// Shading: both sizes, one thread and all, hard shadows and 8 soft-shadow rays.
 BENCHMARK(BM_Render_Shade)
-    ->Args({300, 300, 0, 0})
-    ->Args({300, 300, 0, 8})
-    ->Args({1280, 960, 0, 0})
-    ->Args({1280, 960, 0, 8})
+    ->ArgsProduct({{300}, {300}, {1, 0}, {0, 8}})
+    ->ArgsProduct({{1280}, {960}, {1, 0}, {0, 8}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_Render_LoadMesh)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -47,15 +47,21 @@ void fill_gt_info(PartAnnotation& part, const cv::Mat& depth) {
   }
   part.px_count_all = cv::countNonZero(part.mask);
   part.px_count_visib = cv::countNonZero(part.mask_visib);
+  part.bbox_obj = mask_box(part.mask);
+  part.bbox_visib = mask_box(part.mask_visib);
   if (depth.empty()) {
     part.px_count_valid = part.px_count_all;
+  } else if (part.bbox_obj.empty()) {
+    part.px_count_valid = 0;
   } else {
-    part.px_count_valid = cv::countNonZero(part.mask & (depth > 0.0f));
+    // Within the amodal box only: outside it the mask is empty (the same count; at
+    // 1280x960 a few milliseconds less per part).
+    const cv::Rect box(part.bbox_obj.x, part.bbox_obj.y, part.bbox_obj.width,
+                       part.bbox_obj.height);
+    part.px_count_valid = cv::countNonZero(part.mask(box) & (depth(box) > 0.0f));
   }
   part.visib_fract =
       part.px_count_all > 0 ? static_cast<double>(part.px_count_visib) / part.px_count_all : 0.0;
-  part.bbox_obj = mask_box(part.mask);
-  part.bbox_visib = mask_box(part.mask_visib);
 }
 
 }  // namespace flexsight

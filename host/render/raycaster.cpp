@@ -253,30 +253,44 @@ void write_hit(const SceneView& view, RaycastImages& images, int x, int y, unsig
   images.point.at<cv::Vec3f>(y, x) = {point.x(), point.y(), point.z()};
 }
 
+// Every pixel of a tile.
+struct WholeTile {
+  bool operator()(int, int) const { return true; }
+};
+
 // Casts the camera rays of pixels [x0, x1) x [y0, y1) through `scene` as 4x4 packets
 // (rtcIntersect16: on coherent primary rays about three times the rays per second of
 // rtcIntersect1, bench/render) and calls on_hit(x, y, instance, triangle, u, v, t) for
-// each pixel that meets a surface. A pixel's packet and lane depend on where it lies in
-// its tile, never on the threads.
-template <class OnHit>
+// each pixel that meets a surface and for which wanted(x, y) holds. A pixel's packet
+// and lane depend on where it lies in its tile, never on the threads. A packet with no
+// wanted pixel is not cast; one with some is cast whole, as without `wanted`: Embree's
+// traversal depends on which lanes of a packet are active (it turns to single rays when
+// few are), and with it which of two triangles at exactly the same distance a ray
+// reports, so only whole packets give the same bytes for sure.
+template <class OnHit, class Wanted = WholeTile>
 void cast_packets(RTCScene scene, const CameraRays& rays, int x0, int y0, int x1, int y1,
-                  const OnHit& on_hit) {
+                  const OnHit& on_hit, const Wanted& wanted = {}) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[16];
+  bool keep[16];
   for (int by = y0; by < y1; by += 4) {
     for (int bx = x0; bx < x1; bx += 4) {
+      bool any = false;
       for (int k = 0; k < 16; ++k) {
         const int x = bx + (k & 3), y = by + (k >> 2);
         const bool inside = x < x1 && y < y1;
+        keep[k] = inside && wanted(x, y);
+        any = any || keep[k];
         valid[k] = inside ? -1 : 0;
         set_primary_ray(packet, k, inside ? rays.dx[x] : 0.0f, inside ? rays.dy[y] : 0.0f);
       }
+      if (!any) continue;
       rtcIntersect16(valid, scene, &context, &packet);
       for (int k = 0; k < 16; ++k) {
-        if (valid[k] == 0 || packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+        if (!keep[k] || packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
         on_hit(bx + (k & 3), by + (k >> 2), packet.hit.instID[0][k], packet.hit.primID[k],
                packet.hit.u[k], packet.hit.v[k], packet.ray.tfar[k]);
       }
@@ -323,15 +337,29 @@ RaycastImages raycast(const RenderScene& scene, const PinholeCamera& camera,
   images.geometric_normal = zeros_like_image(camera, CV_32FC3);
   images.point = zeros_like_image(camera, CV_32FC3);
   const RTCScene top = scene.embree_scene();
+  const auto on_hit = [&](int x, int y, unsigned id, unsigned prim, float u, float v, float t) {
+    write_hit(view, images, x, y, id, prim, u, v, t, Eigen::Vector3f(rays.dx[x], rays.dy[y], 1.0f));
+  };
 
   render_detail::for_each_tile(
       cv::Rect(0, 0, camera.width, camera.height), options.threads,
       [&](int x0, int y0, int x1, int y1) {
-        cast_packets(top, rays, x0, y0, x1, y1,
-                     [&](int x, int y, unsigned id, unsigned prim, float u, float v, float t) {
-                       write_hit(view, images, x, y, id, prim, u, v, t,
-                                 Eigen::Vector3f(rays.dx[x], rays.dy[y], 1.0f));
-                     });
+        if (options.areas.empty()) return cast_packets(top, rays, x0, y0, x1, y1, on_hit);
+        // The same tiles and packets as without areas; those that meet no area are not
+        // cast, and only the pixels in an area are written.
+        const cv::Rect tile(x0, y0, x1 - x0, y1 - y0);
+        std::vector<cv::Rect> parts;
+        for (const cv::Rect& area : options.areas) {
+          const cv::Rect part = area & tile;
+          if (!part.empty()) parts.push_back(part);
+        }
+        if (parts.empty()) return;
+        cast_packets(top, rays, x0, y0, x1, y1, on_hit, [&](int x, int y) {
+          for (const cv::Rect& part : parts) {
+            if (part.contains({x, y})) return true;
+          }
+          return false;
+        });
       });
   return images;
 }

@@ -95,6 +95,13 @@ struct RaycastOptions {
   // OpenMP threads over 16x16-pixel tiles; 0 takes OpenMP's default. The images are the
   // same bytes for every thread count.
   int threads = 0;
+  // raycast() only: when not empty, only the pixels inside at least one of these
+  // rectangles are written, the others left as where no surface is, and only the 4x4
+  // packets of rays that meet a rectangle are cast. For a caller that knows where
+  // surfaces can be, such as the union of the instances' projected boxes (rays outside
+  // it would all miss). The pixels written are the same bytes as without areas (the
+  // packets cast are the same). amodal_masks casts each instance's own box anyway.
+  std::vector<cv::Rect> areas;
 };
 
 struct RaycastImages {

@@ -128,8 +128,13 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
   timing.scene_setup_ms = scene->take_setup_ms();
   timing.sampling_ms = lap_ms(clock) - timing.scene_setup_ms;
 
+  // The final cast, within the kept parts' projected boxes only: the other instances
+  // are parked behind the camera, so no ray outside those boxes meets anything.
   RaycastOptions raycast_options;
   raycast_options.threads = 1;
+  for (const PlacedPart& placed : placement.parts) {
+    if (!placed.amodal.area.empty()) raycast_options.areas.push_back(placed.amodal.area);
+  }
   RaycastImages images = raycast(scene->scene(), camera, raycast_options);
   timing.raycast_ms = lap_ms(clock);
 

@@ -1,6 +1,7 @@
 // Ray casting against analytic answers: the depth of a plane and of a box at known
 // poses, per pixel; the box of a part's mask against its projected vertices; visible
-// and amodal masks behind a known occluder; and the same bytes for any thread count.
+// and amodal masks behind a known occluder; the same bytes for any thread count; and
+// casts limited to areas.
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
@@ -312,4 +313,67 @@ TEST(RaycastDeterminism, SameBytesWithOneAndManyThreads) {
     hidden += cv::countNonZero(amodal) - cv::countNonZero(visible);
   }
   EXPECT_GT(hidden, 100);
+}
+
+// Areas: the pixels of two overlapping rectangles that straddle tiles and packets are
+// the same bytes as in the full cast, every other pixel is empty; the projected boxes of
+// all the instances give the full cast's bytes everywhere.
+TEST(RaycastDepth, AreasCastTheirPixelsOnlyWithTheSameBytes) {
+  RenderScene scene;
+  const char* objects[] = {"05", "19", "30"};
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(file_present(tless_cad_path(objects[i])));
+    const int mesh = scene.add_mesh(
+        std::make_shared<const Mesh>(load_mesh(tless_cad_path(objects[i]).string())));
+    scene.add_instance(mesh, make_pose(60.0 * i + 10.0, {1.0, 0.5, i - 1.0},
+                                       {-45.0 + 45.0 * i, 8.0 * i - 8.0, 420.0 + 30 * i}));
+  }
+  scene.commit();
+  PinholeCamera camera = awkward_camera();
+  camera.fx = camera.fy = 260.0;
+  const RaycastImages full = raycast(scene, camera);
+
+  RaycastOptions options;
+  options.areas = {cv::Rect(5, 7, 40, 33), cv::Rect(30, 21, 61, 50)};
+  const RaycastImages some = raycast(scene, camera, options);
+  cv::Mat inside = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
+  for (const cv::Rect& area : options.areas) inside(area).setTo(255);
+  const std::vector<std::pair<cv::Mat, cv::Mat>> outputs = {
+      {full.depth, some.depth},
+      {full.instance, some.instance},
+      {full.normal, some.normal},
+      {full.geometric_normal, some.geometric_normal},
+      {full.point, some.point}};
+  int hits_inside = 0, hits_outside = 0;
+  for (int v = 0; v < camera.height; ++v) {
+    for (int u = 0; u < camera.width; ++u) {
+      const bool hit = full.instance.at<std::int32_t>(v, u) >= 0;
+      if (inside.at<std::uint8_t>(v, u) == 0) {
+        hits_outside += hit;
+        expect_miss(some, u, v);
+        continue;
+      }
+      hits_inside += hit;
+      for (const auto& [a, b] : outputs) {
+        ASSERT_EQ(std::memcmp(a.ptr(v, u), b.ptr(v, u), a.elemSize()), 0) << u << ", " << v;
+      }
+    }
+  }
+  EXPECT_GT(hits_inside, 300);
+  EXPECT_GT(hits_outside, 300);
+
+  // Each part's pixels lie within the box of its amodal mask.
+  options.areas.clear();
+  for (const cv::Mat& amodal : amodal_masks(scene, camera)) {
+    options.areas.push_back(cv::boundingRect(amodal));
+  }
+  const RaycastImages boxed = raycast(scene, camera, options);
+  for (const auto& [a, b] : std::vector<std::pair<cv::Mat, cv::Mat>>{
+           {full.depth, boxed.depth},
+           {full.instance, boxed.instance},
+           {full.normal, boxed.normal},
+           {full.geometric_normal, boxed.geometric_normal},
+           {full.point, boxed.point}}) {
+    EXPECT_TRUE(same_mat_bytes(a, b));
+  }
 }

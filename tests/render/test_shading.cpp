@@ -1,13 +1,18 @@
 // Shading against its formulas: Lambert and ambient on a plane, a hard shadow where the
 // segment to the light crosses an occluder, a penumbra with a light of some size, a
-// spot's cone, the highlight's peak, the sRGB picture, the seed, and bad lighting.
+// spot's cone, the highlight's peak, the sRGB picture, the seed, and bad lighting; and
+// against a one-ray-at-a-time reference, to the bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "host/io/input_error.h"
 #include "host/render/raycaster.h"
 #include "host/render/shading.h"
+#include "kernels/common/counter_rng.h"
 #include "tests/render/render_test_support.h"
 
 using namespace flexsight;
@@ -282,4 +287,169 @@ TEST(Shading, RejectsImpossibleLighting) {
   options.lights[0].cone_degrees = 180.0f;
   options.shadow_samples = 0;
   EXPECT_EQ(message(options).rfind("lighting: shadow samples", 0), 0u);
+}
+
+namespace {
+
+// One pixel shaded as docs/render.md describes it, with one rtcOccluded1 per shadow ray
+// and every cosine computed where it is needed: the reference for shade_linear, which
+// casts its shadow rays in packets of sixteen and computes a spot's cone once.
+Eigen::Vector3f reference_pixel(const RenderScene& scene, const RaycastImages& images,
+                                const ShadingOptions& options, int u, int v) {
+  constexpr float kPi = 3.14159265358979323846f;
+  const Eigen::Vector3f point = at(images.point, u, v);
+  const Eigen::Vector3f normal = at(images.normal, u, v);
+  const Eigen::Vector3f geometric = at(images.geometric_normal, u, v);
+  const Material& material = scene.instance(images.instance.at<std::int32_t>(v, u)).material;
+  const float offset = 1e-5f * point.cwiseAbs().maxCoeff() + 1e-4f;
+  const Eigen::Vector3f origin = point + offset * geometric;
+  const fs_u32 pixel = fs_u32(v) * fs_u32(images.depth.cols) + fs_u32(u);
+  const auto blocked = [&](const Eigen::Vector3f& target) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = origin.x();
+    ray.org_y = origin.y();
+    ray.org_z = origin.z();
+    const Eigen::Vector3f direction = target - origin;
+    ray.dir_x = direction.x();
+    ray.dir_y = direction.y();
+    ray.dir_z = direction.z();
+    ray.tnear = 0.0f;
+    ray.tfar = 1.0f - 1e-4f;
+    ray.time = 0.0f;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene.embree_scene(), &context, &ray);
+    return ray.tfar < 0.0f;
+  };
+  std::vector<Light> lights = options.lights;
+  if (options.camera_light) {
+    Light camera;
+    camera.position = Eigen::Vector3f::Zero();
+    camera.intensity = options.camera_light_intensity;
+    lights.push_back(camera);
+  }
+  const Eigen::Vector3f to_eye = -point.normalized();
+  Eigen::Vector3f colour = options.ambient * material.albedo;
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const Light& light = lights[l];
+    const Eigen::Vector3f to_light = (light.position - point).normalized();
+    const float lambert = normal.dot(to_light);
+    if (lambert <= 0.0f || geometric.dot(to_light) <= 0.0f) continue;
+    float spot = 1.0f;
+    if (light.cone_degrees < 180.0f) {
+      const float outer = std::cos(light.cone_degrees * kPi / 180.0f);
+      const float inner =
+          std::cos(std::max(light.cone_degrees - light.falloff_degrees, 0.0f) * kPi / 180.0f);
+      const float c = (-to_light).dot(light.direction.normalized());
+      if (c <= outer) continue;
+      if (!(c >= inner || inner <= outer)) {
+        const float s = (c - outer) / (inner - outer);
+        spot = s * s * (3.0f - 2.0f * s);
+      }
+    }
+    float visible = 1.0f;
+    if (options.shadows && l < options.lights.size()) {
+      if (light.radius <= 0.0f) {
+        visible = blocked(light.position) ? 0.0f : 1.0f;
+      } else {
+        const Eigen::Vector3f w = (light.position - origin).normalized();
+        const Eigen::Vector3f helper =
+            std::abs(w.x()) < 0.9f ? Eigen::Vector3f::UnitX() : Eigen::Vector3f::UnitY();
+        const Eigen::Vector3f a = w.cross(helper).normalized();
+        const Eigen::Vector3f b = w.cross(a);
+        int unblocked = 0;
+        for (int k = 0; k < options.shadow_samples; ++k) {
+          // The jitter's key: (seed, pixel, light, sample).
+          fs_u32 h = fs_hash(options.seed ^ 0x5AD0F00DU);
+          h = fs_hash(h ^ pixel);
+          h = fs_hash(h ^ (fs_u32(l) * 0x10000U + fs_u32(k)));
+          const float j0 = fs_u32_to_unit(h), j1 = fs_u32_to_unit(fs_hash(h ^ 0x68E31DA4U));
+          const float r = light.radius * std::sqrt(j0);
+          const float phi = 2.0f * kPi * (float(k) + j1) / float(options.shadow_samples);
+          const Eigen::Vector3f target =
+              light.position + r * (std::cos(phi) * a + std::sin(phi) * b);
+          if (!blocked(target)) ++unblocked;
+        }
+        visible = float(unblocked) / float(options.shadow_samples);
+      }
+    }
+    if (visible <= 0.0f) continue;
+    const Eigen::Vector3f half = (to_light + to_eye).normalized();
+    const float highlight =
+        material.specular * std::pow(std::max(normal.dot(half), 0.0f), material.shininess);
+    colour += (visible * spot) * light.intensity.cwiseProduct(lambert * material.albedo +
+                                                              Eigen::Vector3f::Constant(highlight));
+  }
+  return colour;
+}
+
+}  // namespace
+
+// T-LESS parts over a floor under three lights (hard, soft, and a soft spot whose cone
+// edge crosses the parts) and the camera light, 5 soft-shadow rays (packets that end
+// part full): every pixel is the same float bits as the reference's, on 1 and 3 threads.
+TEST(Shading, ShadowRayPacketsGiveTheSameFloatsAsOneRayAtATime) {
+  RenderScene scene;
+  const char* objects[] = {"05", "11", "26"};
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(file_present(tless_cad_path(objects[i])));
+    const int mesh = scene.add_mesh(
+        std::make_shared<const Mesh>(load_mesh(tless_cad_path(objects[i]).string())));
+    Material material;
+    material.albedo = tinted_grey(4, i);
+    material.shininess = 12.0f + 40.0f * i;
+    scene.add_instance(mesh,
+                       make_pose(50.0 * i, {0.5, 1.0, i - 1.0},
+                                 {-50.0 + 50.0 * i, 15.0 * (i % 2), 480.0 + 20 * i}),
+                       material);
+  }
+  scene.add_instance(scene.add_mesh(square_mesh(400.0f)), make_pose(0, {0, 0, 1}, {0, 0, 540}),
+                     matte({0.5f, 0.5f, 0.5f}));
+  scene.commit();
+  PinholeCamera camera;
+  camera.width = 133;
+  camera.height = 101;
+  camera.fx = camera.fy = 130.0;
+  camera.cx = 66.2;
+  camera.cy = 49.9;
+  const RaycastImages images = raycast(scene, camera);
+
+  ShadingOptions options;
+  options.lights.resize(3);
+  options.lights[0].position = {-300.0f, -500.0f, 100.0f};
+  options.lights[1].position = {250.0f, -200.0f, 50.0f};
+  options.lights[1].radius = 50.0f;
+  options.lights[2].position = {0.0f, 400.0f, 0.0f};
+  options.lights[2].radius = 30.0f;
+  options.lights[2].direction = Eigen::Vector3f(0.0f, -400.0f, 500.0f).normalized();
+  options.lights[2].cone_degrees = 20.0f;
+  options.lights[2].falloff_degrees = 6.0f;
+  options.camera_light = true;
+  options.shadow_samples = 5;
+  options.seed = 11;
+  ShadingOptions unshadowed = options;
+  unshadowed.shadows = false;
+  unshadowed.threads = 1;
+  const cv::Mat without = shade_linear(scene, images, unshadowed);
+  for (int threads : {1, 3}) {
+    options.threads = threads;
+    const cv::Mat radiance = shade_linear(scene, images, options);
+    int surfaces = 0, differ = 0, shadowed = 0;
+    for (int v = 0; v < camera.height; ++v) {
+      for (int u = 0; u < camera.width; ++u) {
+        if (images.instance.at<std::int32_t>(v, u) < 0) continue;
+        ++surfaces;
+        const Eigen::Vector3f expected = reference_pixel(scene, images, options, u, v);
+        const Eigen::Vector3f got = at(radiance, u, v);
+        if (std::memcmp(expected.data(), got.data(), sizeof(float) * 3) != 0) ++differ;
+        if (got != at(without, u, v)) ++shadowed;
+      }
+    }
+    EXPECT_EQ(differ, 0) << threads << " threads";
+    EXPECT_GT(surfaces, 5000);
+    EXPECT_GT(shadowed, 500);
+  }
 }
