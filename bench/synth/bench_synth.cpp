@@ -94,8 +94,8 @@ void BM_Synth_FullSynthetic(benchmark::State& state) {
                  ", 1 thread");
 }
 
-// Images 0-199 at 300x300, 0-29 at 1280x960 (about 6 s and 10 s per repetition before
-// the shadow packets).
+// Images 0-199 at 300x300, 0-29 at 1280x960: about 5 s and 10 s per repetition (6 s and
+// 17 s before the shadow packets).
 BENCHMARK(BM_Synth_FullSynthetic)
     ->Args({300, 300})
     ->Iterations(200)

@@ -40,8 +40,8 @@ struct ShadingOptions {
   // Light that reaches everything, times the albedo: stands in for the inter-reflections
   // that keep real shadows from being black.
   float ambient = 0.15f;
-  // Shadow rays towards each light (rtcOccluded1); without them every surface facing a
-  // light is lit.
+  // Shadow rays towards each light (rtcOccluded16 packets, shadow_packets.h); without
+  // them every surface facing a light is lit.
   bool shadows = true;
   // Shadow rays per pixel towards a light with a radius, at jittered points of its disc.
   int shadow_samples = 8;
