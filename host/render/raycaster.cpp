@@ -298,9 +298,8 @@ void cast_packets(RTCScene scene, const CameraRays& rays, int x0, int y0, int x1
   }
 }
 
-// The pixels whose centres can fall on `mesh` at `pose`: the box of its bounding box's
-// projected corners, one pixel wider against rounding; the whole image when a corner
-// is not in front of the camera.
+}  // namespace
+
 cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera& camera) {
   const cv::Rect image(0, 0, camera.width, camera.height);
   double lo_u = INFINITY, lo_v = INFINITY, hi_u = -INFINITY, hi_v = -INFINITY;
@@ -324,7 +323,6 @@ cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera&
   return cv::Rect(int(x0), int(y0), int(x1 - x0), int(y1 - y0)) & image;
 }
 
-}  // namespace
 
 RaycastImages raycast(const RenderScene& scene, const PinholeCamera& camera,
                       const RaycastOptions& options) {

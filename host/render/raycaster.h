@@ -125,6 +125,11 @@ RaycastImages raycast(const RenderScene& scene, const PinholeCamera& camera,
 std::vector<cv::Mat> amodal_masks(const RenderScene& scene, const PinholeCamera& camera,
                                   const RaycastOptions& options = {});
 
+// The pixels whose centres can fall on `mesh` at `pose`: the box of its bounding box's
+// projected corners, one pixel wider against rounding, clipped to the image; the whole
+// image when a corner is not in front of the camera.
+cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera& camera);
+
 // The pixels where `instance` is the closest surface, CV_8UC1 255 / 0.
 cv::Mat visible_mask(const RaycastImages& images, int instance);
 

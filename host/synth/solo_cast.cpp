@@ -14,29 +14,6 @@ CameraRayTable::CameraRayTable(const PinholeCamera& camera) : dx(camera.width), 
   for (int v = 0; v < camera.height; ++v) dy[v] = static_cast<float>((v - camera.cy) / camera.fy);
 }
 
-cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera& camera) {
-  const cv::Rect image(0, 0, camera.width, camera.height);
-  double lo_u = INFINITY, lo_v = INFINITY, hi_u = -INFINITY, hi_v = -INFINITY;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d p =
-        pose.R * mesh.bounds.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner))
-                     .cast<double>() +
-        pose.t;
-    if (!(p.z() > 1e-6)) return image;
-    const Eigen::Vector2d uv = camera.project(p);
-    lo_u = std::min(lo_u, uv.x());
-    hi_u = std::max(hi_u, uv.x());
-    lo_v = std::min(lo_v, uv.y());
-    hi_v = std::max(hi_v, uv.y());
-  }
-  const double x0 = std::max(std::floor(lo_u) - 1.0, 0.0);
-  const double y0 = std::max(std::floor(lo_v) - 1.0, 0.0);
-  const double x1 = std::min(std::ceil(hi_u) + 2.0, double(camera.width));
-  const double y1 = std::min(std::ceil(hi_v) + 2.0, double(camera.height));
-  if (x1 <= x0 || y1 <= y0) return {};
-  return cv::Rect(int(x0), int(y0), int(x1 - x0), int(y1 - y0)) & image;
-}
-
 AmodalPatch cast_alone(const RenderScene& scene, int instance, const PinholeCamera& camera,
                        const CameraRayTable& rays) {
   AmodalPatch patch;

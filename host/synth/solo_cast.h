@@ -28,9 +28,4 @@ struct AmodalPatch {
 AmodalPatch cast_alone(const RenderScene& scene, int instance, const PinholeCamera& camera,
                        const CameraRayTable& rays);
 
-// The pixels whose centres can fall on `mesh` at `pose`: the box of its bounding box's
-// projected corners, one pixel wider against rounding, clipped to the image; the whole
-// image when a corner is not in front of the camera.
-cv::Rect projected_area(const Mesh& mesh, const Pose& pose, const PinholeCamera& camera);
-
 }  // namespace flexsight
