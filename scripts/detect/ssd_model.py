@@ -117,14 +117,34 @@ class MobileNetV2Features(nn.Module):
         return out + [self.conv1]
 
     def forward(self, x):
+        return self.tail(self.stem(x, 0), 0)
+
+    def stem(self, x, upto: int):
+        """conv0 and blocks [0, upto): the part a partly frozen extractor computes once."""
         x = self.conv0(x)
+        for block in self.blocks[:upto]:
+            x = block(x)
+        return x
+
+    def tail(self, x, start: int):
+        """Blocks [start, end) and conv1 on the stem's output: (layer_15 expansion, layer_19).
+        start must not be past FEATURE_BLOCK, whose expansion output is the first map."""
+        if start > FEATURE_BLOCK:
+            raise ValueError("the tail must start at block %d or before" % FEATURE_BLOCK)
         f0 = None
-        for i, block in enumerate(self.blocks):
+        for i in range(start, len(self.blocks)):
             if i == FEATURE_BLOCK:
-                x, f0 = block(x, return_expansion=True)
+                x, f0 = self.blocks[i](x, return_expansion=True)
             else:
-                x = block(x)
+                x = self.blocks[i](x)
         return f0, self.conv1(x)
+
+    def stem_shape(self, upto: int):
+        """(size, channels) of stem(x, upto)'s output."""
+        if upto == 0:
+            return self.conv0.out_size, self.conv0.conv.out_channels
+        b = self.blocks[upto - 1]
+        return b.out_size, b.project.conv.out_channels
 
 
 class SSDDetector(nn.Module):

@@ -35,7 +35,7 @@ import torch.nn.functional as F
 from PIL import Image
 
 import anchors as anc
-from ssd_model import MODELS_DIR, SSDMobileNetV2, build_model
+from ssd_model import FEATURE_BLOCK, MODELS_DIR, SSDMobileNetV2, build_model
 
 CL = torch.channels_last  # NHWC: PyTorch's CPU convolutions (oneDNN) run ~2x faster in it
 NEG_POS_RATIO = 3
@@ -96,9 +96,9 @@ def match_all(data: CocoSet, anchors: np.ndarray):
 # ----------------------------------------------------------------------------------------------
 # Feature cache
 
-def cache_key(data: CocoSet, backbone: str, image_size: int) -> str:
+def cache_key(data: CocoSet, backbone: str, image_size: int, tune_from: int) -> str:
     h = hashlib.sha256()
-    h.update(("%s %d %s\n" % (backbone, image_size, MODELS_DIR)).encode())
+    h.update(("%s %d %s %d\n" % (backbone, image_size, MODELS_DIR, tune_from)).encode())
     for im in data.images:
         st = (data.root / im["file_name"]).stat()
         h.update(("%s %d %d\n" % (im["file_name"], st.st_size, int(st.st_mtime))).encode())
@@ -106,15 +106,23 @@ def cache_key(data: CocoSet, backbone: str, image_size: int) -> str:
 
 
 def cache_features(model: SSDMobileNetV2, data: CocoSet, cache_dir: Path, key: str,
-                   batch: int = 16):
-    """Two float16 memmaps, channels last: [N, 19, 19, 576] and [N, 10, 10, 1280] (the layout the
-    channels-last detector reads without a copy); reused when the key (images, backbone)
-    matches, recomputed otherwise."""
+                   tune_from: int, batch: int = 16):
+    """Float16 memmaps, channels last (the layout the channels-last layers read without a copy):
+    with the whole extractor frozen its two feature maps [N, 19, 19, 576] and [N, 10, 10, 1280];
+    with blocks from tune_from on trained, the frozen stem's output (e.g. [N, 19, 19, 96] for
+    block 13). Reused when the key (images, backbone, split point) matches, recomputed otherwise."""
     cache_dir.mkdir(parents=True, exist_ok=True)
     meta = cache_dir / "cache.json"
-    shapes = [(len(data), s, s, c) for c, s in zip(model.backbone.feature_channels,
-                                                    model.backbone.feature_sizes)]
-    paths = [cache_dir / "f0.npy", cache_dir / "f1.npy"]
+    bb = model.backbone
+    if tune_from < 0:
+        shapes = [(len(data), s, s, c) for c, s in zip(bb.feature_channels, bb.feature_sizes)]
+        paths = [cache_dir / "f0.npy", cache_dir / "f1.npy"]
+        compute = bb
+    else:
+        size, channels = bb.stem_shape(tune_from)
+        shapes = [(len(data), size, size, channels)]
+        paths = [cache_dir / ("stem%d.npy" % tune_from)]
+        compute = lambda x: (bb.stem(x, tune_from),)  # noqa: E731
     if meta.exists() and json.loads(meta.read_text()).get("key") == key:
         maps = [np.load(p, mmap_mode="r") for p in paths]
         if all(m.shape == s for m, s in zip(maps, shapes)):
@@ -123,13 +131,13 @@ def cache_features(model: SSDMobileNetV2, data: CocoSet, cache_dir: Path, key: s
     meta.unlink(missing_ok=True)
     maps = [np.lib.format.open_memmap(p, mode="w+", dtype=np.float16, shape=s)
             for p, s in zip(paths, shapes)]
-    backbone = model.backbone.eval()
+    bb.eval()
     t0, c0, n = time.time(), time.process_time(), len(data)
     with torch.no_grad():
         for start in range(0, n, batch):
             idx = range(start, min(start + batch, n))
             x = data.images_tensor(idx, model.image_size).contiguous(memory_format=CL)
-            for m, f in zip(maps, backbone(x)):
+            for m, f in zip(maps, compute(x)):
                 m[start:start + len(idx)] = f.permute(0, 2, 3, 1).half().numpy()
             done = start + len(idx)
             if done == n or (start // batch) % 10 == 0:
@@ -186,8 +194,12 @@ def batch_inputs(args, model, data, feats, idx):
     return tuple(torch.from_numpy(f[idx]).float().permute(0, 3, 1, 2) for f in feats)
 
 
-def forward(model, inputs, train_all: bool):
-    return model(inputs) if train_all else model.detector(*inputs)
+def forward(model, inputs, args):
+    if args.train_all:
+        return model(inputs)
+    if args.tune_from >= 0:
+        return model.detector(*model.backbone.tail(inputs[0], args.tune_from))
+    return model.detector(*inputs)
 
 
 def evaluate(args, model, data, feats, labels, targets, idx):
@@ -196,7 +208,7 @@ def evaluate(args, model, data, feats, labels, targets, idx):
     with torch.no_grad():
         for s in range(0, len(idx), args.batch_size):
             b = idx[s:s + args.batch_size]
-            out = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            out = forward(model, batch_inputs(args, model, data, feats, b), args)
             loc, cls = ssd_loss(*out, labels[b], targets[b])
             tot += np.array([loc.item(), cls.item()]) * len(b)
     return tot / max(len(idx), 1)
@@ -211,7 +223,7 @@ def average_precision(args, model, data, feats, idx):
     with torch.no_grad():
         for s in range(0, len(idx), args.batch_size):
             b = idx[s:s + args.batch_size]
-            boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args)
             dets += [decode_detections(x.numpy(), y.numpy(), anchors) for x, y in zip(boxes, logits)]
     return average_precision_50(dets, [data.gt[i] for i in idx], model.detector.num_classes)[0]
 
@@ -283,6 +295,11 @@ def main(argv=None) -> int:
     ap.add_argument("--class-heads", choices=("random", "oidv4"), default="random")
     ap.add_argument("--train-all", action="store_true",
                     help="train the feature extractor too, from images, without the cache")
+    ap.add_argument("--tune-from", type=int, default=-1, metavar="BLOCK",
+                    help="train the extractor's blocks from BLOCK (0-16) on, and conv1, caching the"
+                         " frozen blocks' output; -1 (default) freezes the whole extractor")
+    ap.add_argument("--backbone-lr-factor", type=float, default=0.1,
+                    help="learning rate of trained extractor layers relative to --lr")
     ap.add_argument("--no-export", action="store_true", help="skip the ONNX export at the end")
     args = ap.parse_args(argv)
 
@@ -306,14 +323,25 @@ def main(argv=None) -> int:
 
     if args.train_all:
         feats = None
-        params = [{"params": model.backbone.parameters(), "lr": args.lr * 0.1},
+        args.tune_from = -1
+        params = [{"params": model.backbone.parameters(), "lr": args.lr * args.backbone_lr_factor},
                   {"params": model.detector.parameters(), "lr": args.lr}]
     else:
-        key = cache_key(data, args.backbone, model.image_size)
-        feats = cache_features(model, data, args.cache or args.out / "features", key)
+        if not -1 <= args.tune_from <= FEATURE_BLOCK:
+            print("error: --tune-from must be in [-1, %d]" % FEATURE_BLOCK, file=sys.stderr)
+            return 2
+        key = cache_key(data, args.backbone, model.image_size, args.tune_from)
+        feats = cache_features(model, data, args.cache or args.out / "features", key,
+                               args.tune_from)
         for p in model.backbone.parameters():
             p.requires_grad_(False)
         params = [{"params": model.detector.parameters(), "lr": args.lr}]
+        if args.tune_from >= 0:
+            tuned = [p for b in model.backbone.blocks[args.tune_from:] for p in b.parameters()]
+            tuned += list(model.backbone.conv1.parameters())
+            for p in tuned:
+                p.requires_grad_(True)
+            params.append({"params": tuned, "lr": args.lr * args.backbone_lr_factor})
     opt = torch.optim.AdamW(params, lr=args.lr, weight_decay=args.weight_decay)
     steps_per_epoch = max(1, math.ceil(len(train_idx) / args.batch_size))
     total = steps_per_epoch * args.epochs
@@ -342,7 +370,7 @@ def main(argv=None) -> int:
             f = min(1.0, (step + 1) / warmup) * 0.5 * (1 + math.cos(math.pi * step / total))
             for g, lr in zip(opt.param_groups, base):
                 g["lr"] = lr * f
-            out = forward(model, batch_inputs(args, model, data, feats, b), args.train_all)
+            out = forward(model, batch_inputs(args, model, data, feats, b), args)
             loc, cls = ssd_loss(*out, labels[b], targets[b])
             loss = loc + cls
             opt.zero_grad()
@@ -351,7 +379,7 @@ def main(argv=None) -> int:
             sums += np.array([loc.item(), cls.item()]) * len(b)
             seen += len(b)
             step += 1
-            if args.train_all and step % 10 == 0:
+            if (args.train_all or args.tune_from >= 0) and step % 20 == 0:
                 print("  step %d: loss %.3f (%.1f images/s)"
                       % (step, loss.item(), seen / (time.time() - t_epoch)), flush=True)
         dt = time.time() - t_epoch
@@ -388,7 +416,8 @@ def main(argv=None) -> int:
     summary = {"images": len(data), "train_images": len(train_idx), "val_images": len(val_idx),
                "epochs": log_rows[-1]["epoch"], "steps": step,
                "train_images_per_s": images_trained / max(train_time, 1e-9),
-               "first": log_rows[0], "last": log_rows[-1], "ap50_val": ap_val, "ap50_train": ap_train}
+               "first": log_rows[0], "last": log_rows[-1], "ap50_val": ap_val, "ap50_train": ap_train,
+               "settings": {k: str(v) for k, v in vars(args).items()}}
     if feats is not None and FEATURE_RATE:
         summary["feature_cache_images_per_s"] = FEATURE_RATE[0]
     (args.out / "summary.json").write_text(json.dumps(finite_or_null(summary), indent=1) + "\n")
