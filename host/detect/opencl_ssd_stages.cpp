@@ -10,16 +10,6 @@ namespace {
 
 namespace src = kernel_sources::detect;
 
-// A stage's buffer must hold its elements: the kernels trust the sizes they are given.
-template <typename T>
-void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
-  if (elements < 0 || buffer.size() < static_cast<size_t>(elements)) {
-    throw std::invalid_argument(std::string(stage) + ": buffer '" + buffer.what() + "' holds " +
-                                std::to_string(buffer.size()) + " elements, the stage needs " +
-                                std::to_string(elements));
-  }
-}
-
 void require_top_k(int top_k, const char* stage) {
   if (top_k < 1 || top_k > SSD_MAX_TOP_K) {
     throw std::invalid_argument(std::string(stage) + ": top_k must be in 1.." +
@@ -34,22 +24,17 @@ long long product(long long a, long long b) { return a * b; }
 
 OpenClSsdStages::OpenClSsdStages(Context& context, KernelProfiler* profiler)
     : context_(context), profiler_(profiler),
-      decode_boxes_(make_kernel(src::ssd_decode, "decode_boxes")),
-      sigmoid_scores_(make_kernel(src::ssd_decode, "sigmoid_scores")),
-      softmax_scores_(make_kernel(src::ssd_decode, "softmax_scores")),
-      gather_candidates_(make_kernel(src::ssd_nms, "gather_candidates")),
-      rank_candidates_(make_kernel(src::ssd_nms, "rank_candidates")),
-      iou_mask_(make_kernel(src::ssd_nms, "iou_mask")),
-      nms_scan_(make_kernel(src::ssd_nms, "nms_scan")),
-      rank_detections_(make_kernel(src::ssd_nms, "rank_detections")) {}
-
-Kernel OpenClSsdStages::make_kernel(const KernelSource& source, const char* name) {
-  return Kernel(context_, context_.program(source), name);
-}
+      decode_boxes_(Kernel(context, src::ssd_decode, "decode_boxes")),
+      sigmoid_scores_(Kernel(context, src::ssd_decode, "sigmoid_scores")),
+      softmax_scores_(Kernel(context, src::ssd_decode, "softmax_scores")),
+      gather_candidates_(Kernel(context, src::ssd_nms, "gather_candidates")),
+      rank_candidates_(Kernel(context, src::ssd_nms, "rank_candidates")),
+      iou_mask_(Kernel(context, src::ssd_nms, "iou_mask")),
+      nms_scan_(Kernel(context, src::ssd_nms, "nms_scan")),
+      rank_detections_(Kernel(context, src::ssd_nms, "rank_detections")) {}
 
 void OpenClSsdStages::launch(Kernel& kernel, size_t width, size_t height) {
-  Event event = kernel.launch(width, height);
-  if (profiler_) profiler_->record(kernel.name(), std::move(event));
+  launch_profiled(kernel, width, height, profiler_);
 }
 
 // SSD_LINEAR_ROWS rows of ceil(count / rows) items (ssd_linear_item): a launch over

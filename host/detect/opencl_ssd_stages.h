@@ -60,7 +60,6 @@ class OpenClSsdStages {
                        Buffer<SsdDetectionRecord>& records, Buffer<int>& record_count);
 
  private:
-  Kernel make_kernel(const KernelSource& source, const char* name);
   void launch(Kernel& kernel, size_t width, size_t height);
   void launch_linear(Kernel& kernel, int count);
 

@@ -2,6 +2,8 @@
 // A device buffer of `size()` elements of T, with blocking transfers on the context's
 // queue (the pipeline only transfers at its start and end, so blocking costs nothing
 // and keeps the host data's lifetime obvious). The Context must outlive the buffer.
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -93,5 +95,16 @@ class Buffer {
   MemHandle mem_;
   BufferBytes counted_;
 };
+
+// A stage's buffer must hold its elements: kernels trust the sizes they are given, so the
+// host stages check them before every launch.
+template <typename T>
+void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
+  if (elements < 0 || buffer.size() < static_cast<size_t>(elements)) {
+    throw std::invalid_argument(std::string(stage) + ": buffer '" + buffer.what() + "' holds " +
+                                std::to_string(buffer.size()) + " elements, the stage needs " +
+                                std::to_string(elements));
+  }
+}
 
 }  // namespace flexsight::opencl

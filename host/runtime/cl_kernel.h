@@ -26,6 +26,11 @@ class Kernel {
  public:
   Kernel() = default;
   Kernel(Context& context, cl_program program, const char* name);
+  // The kernel `name` of `source` built on `context` with `options` (the context caches
+  // the program per source and options, so many kernels of one file build it once).
+  Kernel(Context& context, const KernelSource& source, const char* name,
+         const std::string& options = {})
+      : Kernel(context, context.program(source, options), name) {}
 
   const std::string& name() const { return name_; }
 

@@ -21,4 +21,12 @@ class KernelProfiler {
   std::vector<std::pair<std::string, Event>> events_;
 };
 
+// Launches `kernel` over width x height items and, when there is a profiler, hands it
+// the launch's event: what every stage set does for each kernel it runs.
+inline void launch_profiled(Kernel& kernel, size_t width, size_t height,
+                            KernelProfiler* profiler) {
+  Event event = kernel.launch(width, height);
+  if (profiler) profiler->record(kernel.name(), std::move(event));
+}
+
 }  // namespace flexsight::opencl

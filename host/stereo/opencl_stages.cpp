@@ -29,16 +29,6 @@ std::string spatial_option(int lanes, int group) {
   return lanes_option(lanes) + " -DPMS_SPATIAL_GROUP=" + std::to_string(group);
 }
 
-// A stage's buffer must hold its pixels: the kernels trust the sizes they are given.
-template <typename T>
-void require_size(const Buffer<T>& buffer, long long elements, const char* stage) {
-  if (elements < 0 || buffer.size() < static_cast<size_t>(elements)) {
-    throw std::invalid_argument(std::string(stage) + ": buffer '" + buffer.what() + "' holds " +
-                                std::to_string(buffer.size()) + " elements, the stage needs " +
-                                std::to_string(elements));
-  }
-}
-
 void require_view(const DeviceView& view, const char* stage) {
   require_size(view.color, 4LL * view.pixels(), stage);
   require_size(view.gradient, 2LL * view.pixels(), stage);
@@ -70,26 +60,26 @@ void require_level(const DeviceLevel& in, const DeviceField& field, const char* 
 OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_lanes,
                            int spatial_group)
     : context_(context), profiler_(profiler), cost_lanes_(checked_lanes(cost_lanes)),
-      downsample_color_(make_kernel(src::build_view, "downsample_color")),
-      compute_gradient_(make_kernel(src::build_view, "compute_gradient")),
-      pack_match_samples_(make_kernel(src::build_view, "pack_match_samples")),
-      init_random_planes_(make_kernel(src::init_random_planes, "init_random_planes",
+      downsample_color_(Kernel(context_, src::build_view, "downsample_color")),
+      compute_gradient_(Kernel(context_, src::build_view, "compute_gradient")),
+      pack_match_samples_(Kernel(context_, src::build_view, "pack_match_samples")),
+      init_random_planes_(Kernel(context_, src::init_random_planes, "init_random_planes",
                                       lanes_option(cost_lanes_))),
       evaluate_costs_(
-          make_kernel(src::evaluate_costs, "evaluate_costs", lanes_option(cost_lanes_))),
+          Kernel(context_, src::evaluate_costs, "evaluate_costs", lanes_option(cost_lanes_))),
       propagate_spatial_(
-          make_kernel(src::propagate_spatial, "propagate_spatial",
+          Kernel(context_, src::propagate_spatial, "propagate_spatial",
                       spatial_option(cost_lanes_, spatial_group))),
       propagate_view_(
-          make_kernel(src::propagate_view, "propagate_view", lanes_option(cost_lanes_))),
-      refine_random_(make_kernel(src::refine_random, "refine_random", lanes_option(cost_lanes_))),
-      carry_planes_to_finer_(make_kernel(src::carry_planes_to_finer, "carry_planes_to_finer")),
-      plane_disparities_(make_kernel(src::plane_disparities, "plane_disparities")),
-      lr_confidence_(make_kernel(src::lr_confidence, "lr_confidence")),
-      list_unsure_pixels_(make_kernel(src::list_unsure_pixels, "list_unsure_pixels")),
-      upsample_nearest_(make_kernel(src::upsample_nearest, "upsample_nearest")),
-      left_right_check_(make_kernel(src::left_right_check, "left_right_check")),
-      fill_inconsistent_(make_kernel(src::fill_inconsistent, "fill_inconsistent")),
+          Kernel(context_, src::propagate_view, "propagate_view", lanes_option(cost_lanes_))),
+      refine_random_(Kernel(context_, src::refine_random, "refine_random", lanes_option(cost_lanes_))),
+      carry_planes_to_finer_(Kernel(context_, src::carry_planes_to_finer, "carry_planes_to_finer")),
+      plane_disparities_(Kernel(context_, src::plane_disparities, "plane_disparities")),
+      lr_confidence_(Kernel(context_, src::lr_confidence, "lr_confidence")),
+      list_unsure_pixels_(Kernel(context_, src::list_unsure_pixels, "list_unsure_pixels")),
+      upsample_nearest_(Kernel(context_, src::upsample_nearest, "upsample_nearest")),
+      left_right_check_(Kernel(context_, src::left_right_check, "left_right_check")),
+      fill_inconsistent_(Kernel(context_, src::fill_inconsistent, "fill_inconsistent")),
       segment_init_(small_segments_kernel("segment_init")),
       segment_merge_(small_segments_kernel("segment_merge")),
       segment_flatten_(small_segments_kernel("segment_flatten")),
@@ -98,13 +88,8 @@ OpenClStages::OpenClStages(Context& context, KernelProfiler* profiler, int cost_
       flat_planes_(small_segments_kernel("flat_planes")),
       mask_and_(small_segments_kernel("mask_and")) {}
 
-Kernel OpenClStages::make_kernel(const KernelSource& source, const char* name,
-                                 const std::string& options) {
-  return Kernel(context_, context_.program(source, options), name);
-}
-
 Kernel OpenClStages::small_segments_kernel(const char* name) {
-  return make_kernel(src::small_segments, name);
+  return Kernel(context_, src::small_segments, name);
 }
 
 template <typename... Rest>
@@ -116,8 +101,7 @@ void OpenClStages::set_cost_args(Kernel& kernel, const DeviceLevel& in, int view
 }
 
 void OpenClStages::launch(Kernel& kernel, size_t width, size_t height) {
-  Event event = kernel.launch(width, height);
-  if (profiler_) profiler_->record(kernel.name(), std::move(event));
+  launch_profiled(kernel, width, height, profiler_);
 }
 
 size_t OpenClStages::lane_items(size_t pixels) const {
@@ -421,7 +405,7 @@ Kernel& OpenClStages::median_kernel(const std::string& name, int side) {
   auto found = weighted_median_.find(key);
   if (found == weighted_median_.end()) {
     found = weighted_median_
-                .emplace(key, make_kernel(src::weighted_median, name.c_str(),
+                .emplace(key, Kernel(context_, src::weighted_median, name.c_str(),
                                           "-DPMS_MEDIAN_MAX_SAMPLES=" +
                                               std::to_string(samples) + " " +
                                               lanes_option(cost_lanes_)))

@@ -92,8 +92,6 @@ class OpenClStages {
                 Buffer<std::uint8_t>& mask);
 
  private:
-  Kernel make_kernel(const KernelSource& source, const char* name,
-                     const std::string& options = {});
   // A kernel of small_segments.cl (the small-segment mask, flat planes, mask_and).
   Kernel small_segments_kernel(const char* name);
   // Sets the leading arguments of the cost kernels (PMS_COST_KERNEL_ARGS), then `rest`.

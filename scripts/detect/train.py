@@ -49,12 +49,16 @@ MIN_NEGATIVES = 8  # per image, so that images without parts still teach backgro
 class CocoSet:
     """Images and boxes of a COCO instances file; boxes normalised, class 1..C by sorted id."""
 
-    def __init__(self, coco_path: Path):
+    def __init__(self, coco_path: Path, limit: int = 0):
         coco = json.loads(coco_path.read_text())
         self.root = coco_path.parent
         self.categories = sorted(coco["categories"], key=lambda c: c["id"])
         index = {c["id"]: i + 1 for i, c in enumerate(self.categories)}
         self.images = sorted(coco["images"], key=lambda im: im["id"])
+        if limit:  # the first images of a data set: the data-size experiments share one set
+            self.images = self.images[:limit]
+            kept = {im["id"] for im in self.images}
+            coco["annotations"] = [a for a in coco["annotations"] if a["image_id"] in kept]
         boxes = {im["id"]: [] for im in self.images}
         for a in coco["annotations"]:
             if a.get("iscrowd", 0) or a["bbox"][2] <= 0 or a["bbox"][3] <= 0:
@@ -214,8 +218,9 @@ def evaluate(args, model, data, feats, labels, targets, idx):
     return tot / max(len(idx), 1)
 
 
-def average_precision(args, model, data, feats, idx):
-    """AP@0.5 (detect_eval) of the model on the images idx."""
+def average_precision(args, model, data, feats, idx, per_class: bool = False):
+    """AP@0.5 (detect_eval) of the model on the images idx; with feats None the whole network
+    runs on the images (held-out test sets have no cache)."""
     from detect_eval import average_precision_50, decode_detections
     anchors = anc.generate()
     model.eval()
@@ -223,9 +228,13 @@ def average_precision(args, model, data, feats, idx):
     with torch.no_grad():
         for s in range(0, len(idx), args.batch_size):
             b = idx[s:s + args.batch_size]
-            boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args)
+            if feats is None:
+                boxes, logits = model(data.images_tensor(b, model.image_size).contiguous(memory_format=CL))
+            else:
+                boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args)
             dets += [decode_detections(x.numpy(), y.numpy(), anchors) for x, y in zip(boxes, logits)]
-    return average_precision_50(dets, [data.gt[i] for i in idx], model.detector.num_classes)[0]
+    result = average_precision_50(dets, [data.gt[i] for i in idx], model.detector.num_classes)
+    return result if per_class else result[0]
 
 
 def finite_or_null(v):
@@ -242,7 +251,15 @@ def plot(log_rows, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     ep = [r["epoch"] for r in log_rows]
-    fig, ax = plt.subplots(figsize=(6, 4))
+    fig, (ax, ax_ap) = plt.subplots(1, 2, figsize=(10, 4))
+    ap_rows = [r for r in log_rows if r.get("val_ap50") == r.get("val_ap50")]
+    ax_ap.plot([r["epoch"] for r in ap_rows], [r["val_ap50"] for r in ap_rows], "s-",
+               color="C1", label="validation")
+    ax_ap.set_xlabel("epoch")
+    ax_ap.set_ylabel("mAP@0.5 (VOC all-point)")
+    ax_ap.set_ylim(0, 1)
+    ax_ap.grid(True, alpha=0.3)
+    ax_ap.legend()
     ax.plot(ep, [r["train_loss"] for r in log_rows], "o-", label="train")
     if any(r["val_loss"] == r["val_loss"] for r in log_rows):
         ax.plot(ep, [r["val_loss"] for r in log_rows], "s-", label="validation")
@@ -300,6 +317,11 @@ def main(argv=None) -> int:
                          " frozen blocks' output; -1 (default) freezes the whole extractor")
     ap.add_argument("--backbone-lr-factor", type=float, default=0.1,
                     help="learning rate of trained extractor layers relative to --lr")
+    ap.add_argument("--limit", type=int, default=0, help="use only the first N images (0: all)")
+    ap.add_argument("--test", type=Path,
+                    help="held-out data set folder (coco_instances.json): AP@0.5 per class at the end")
+    ap.add_argument("--ap-images", type=int, default=500,
+                    help="validation images scored for the mAP curve after every epoch (0: none)")
     ap.add_argument("--no-export", action="store_true", help="skip the ONNX export at the end")
     args = ap.parse_args(argv)
 
@@ -310,7 +332,7 @@ def main(argv=None) -> int:
         print("error: %s does not exist" % coco_path, file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)
-    data = CocoSet(coco_path)
+    data = CocoSet(coco_path, args.limit)
     print("data: %d images, %d boxes, %d categories from %s"
           % (len(data), sum(len(g[1]) for g in data.gt), len(data.categories), coco_path))
     model = build_model(len(data.categories), args.backbone, args.class_heads)
@@ -353,9 +375,15 @@ def main(argv=None) -> int:
     # Epoch 0: the losses of the starting point (training loss on at most 256 images).
     tr0 = evaluate(args, model, data, feats, labels, targets, train_idx[:256])
     va0 = evaluate(args, model, data, feats, labels, targets, val_idx) if len(val_idx) else [math.nan] * 2
+    ap_idx = val_idx[:args.ap_images]
+
+    def val_ap():
+        return average_precision(args, model, data, feats, ap_idx) if len(ap_idx) else math.nan
+
     log_rows.append({"epoch": 0, "train_loss": float(np.sum(tr0)), "train_loc": tr0[0],
                      "train_cls": tr0[1], "val_loss": float(np.sum(va0)), "val_loc": va0[0],
-                     "val_cls": va0[1], "images_per_s": math.nan, "elapsed_s": 0.0})
+                     "val_cls": va0[1], "val_ap50": val_ap(), "images_per_s": math.nan,
+                     "elapsed_s": 0.0})
     print("epoch   0: train %.3f (loc %.3f cls %.3f)  val %.3f (loc %.3f cls %.3f)  before training"
           % (log_rows[0]["train_loss"], tr0[0], tr0[1], log_rows[0]["val_loss"], va0[0], va0[1]))
     images_trained, train_time = 0, 0.0
@@ -389,12 +417,14 @@ def main(argv=None) -> int:
         va = evaluate(args, model, data, feats, labels, targets, val_idx) if len(val_idx) else [math.nan] * 2
         row = {"epoch": epoch, "train_loss": tr.sum(), "train_loc": tr[0], "train_cls": tr[1],
                "val_loss": float(np.sum(va)), "val_loc": va[0], "val_cls": va[1],
-               "images_per_s": seen / dt, "elapsed_s": time.time() - t_start}
+               "val_ap50": val_ap(), "images_per_s": seen / dt, "elapsed_s": time.time() - t_start}
         log_rows.append(row)
-        print("epoch %3d: train %.3f (loc %.3f cls %.3f)  val %.3f (loc %.3f cls %.3f)  "
+        print("epoch %3d: train %.3f (loc %.3f cls %.3f)  val %.3f (loc %.3f cls %.3f)  AP@0.5 %.3f  "
               "%.0f images/s  %.0f s" % (epoch, row["train_loss"], tr[0], tr[1], row["val_loss"],
-                                         va[0], va[1], row["images_per_s"], row["elapsed_s"]),
+                                         va[0], va[1], row["val_ap50"], row["images_per_s"],
+                                         row["elapsed_s"]),
               flush=True)
+        plot(log_rows, args.out / "loss.png")
         if args.max_minutes and time.time() - t_start > args.max_minutes * 60:
             print("stopping: --max-minutes %.1f reached" % args.max_minutes)
             break
@@ -420,6 +450,15 @@ def main(argv=None) -> int:
                "settings": {k: str(v) for k, v in vars(args).items()}}
     if feats is not None and FEATURE_RATE:
         summary["feature_cache_images_per_s"] = FEATURE_RATE[0]
+    if args.test:
+        test = CocoSet(args.test / "coco_instances.json")
+        if [c["id"] for c in test.categories] != [c["id"] for c in data.categories]:
+            raise ValueError("%s has other categories than the training data" % args.test)
+        m, per_class = average_precision(args, model, test, None, np.arange(len(test)), True)
+        names = [c.get("name", str(c["id"])) for c in data.categories]
+        summary["test"] = {"data": str(args.test), "images": len(test), "ap50": m,
+                           "ap50_per_class": {names[c - 1]: v for c, v in per_class.items()}}
+        print("AP@0.5 on the held-out test set (%d images): %.3f" % (len(test), m))
     (args.out / "summary.json").write_text(json.dumps(finite_or_null(summary), indent=1) + "\n")
     model = model.eval().to(memory_format=torch.contiguous_format)
     torch.save({"model": model.state_dict(), "num_classes": model.detector.num_classes,
