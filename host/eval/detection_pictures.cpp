@@ -13,12 +13,14 @@ const cv::Scalar kWhite(255, 255, 255), kBlack(0, 0, 0), kGrid(225, 225, 225),
 const cv::Scalar kTruthColour(0, 220, 0), kDetectionColour(255, 0, 255);  // RGB
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-// Distinct colours (RGB) for the classes' curves, dark enough on white.
+// Distinct colours (RGB) for the classes' curves, dark enough on white; T-LESS's 30
+// parts still share some, and the legend's order tells them apart.
 cv::Scalar class_colour(std::size_t index) {
-  static const cv::Scalar kPalette[] = {{230, 25, 75},  {60, 160, 60},  {0, 130, 200},
-                                        {245, 130, 48}, {145, 30, 180}, {0, 160, 160},
-                                        {220, 40, 200}, {128, 128, 0},  {170, 110, 40},
-                                        {128, 0, 0},    {0, 0, 128},    {100, 100, 100}};
+  static const cv::Scalar kPalette[] = {
+      {230, 25, 75},  {60, 160, 60},  {0, 130, 200},  {245, 130, 48}, {145, 30, 180},
+      {0, 160, 160},  {220, 40, 200}, {128, 128, 0},  {170, 110, 40}, {128, 0, 0},
+      {0, 0, 128},    {100, 100, 100}, {110, 170, 0}, {255, 105, 180}, {150, 120, 230},
+      {200, 160, 0},  {0, 100, 0},    {70, 130, 180}, {205, 92, 92},  {75, 0, 130}};
   return kPalette[index % (sizeof kPalette / sizeof kPalette[0])];
 }
 
