@@ -7,6 +7,7 @@ namespace flexsight {
 // Each returns the process exit code; arguments exclude the program and command names.
 int run_stereo_command(std::vector<std::string> args);
 int run_eval_command(std::vector<std::string> args);
+int run_eval_det_command(std::vector<std::string> args);
 int run_devices_command(std::vector<std::string> args);
 int run_cloud_command(std::vector<std::string> args);
 int run_render_command(std::vector<std::string> args);

@@ -15,6 +15,7 @@ void print_usage() {
                "  stereo LEFT RIGHT -o DISP.pfm [options]   match a rectified pair\n"
                "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
                "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
+               "  eval-det DATASET --results DETS.json --out DIR  score detections (VOC, COCO AP)\n"
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
                "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "stereo") return flexsight::run_stereo_command(args);
     if (command == "eval") return flexsight::run_eval_command(args);
+    if (command == "eval-det") return flexsight::run_eval_det_command(args);
     if (command == "cloud") return flexsight::run_cloud_command(args);
     if (command == "devices") return flexsight::run_devices_command(args);
     if (command == "render") return flexsight::run_render_command(args);

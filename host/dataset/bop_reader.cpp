@@ -115,6 +115,19 @@ BopImageRef BopReader::ref(std::size_t i) const {
   return {scenes_[entry.scene].scene_id, entry.im_id};
 }
 
+const BopImageRecord& BopReader::record(std::size_t i) const {
+  const Entry& entry = index_.at(i);
+  return scenes_[entry.scene].json.images.at(entry.im_id);
+}
+
+const std::string& BopReader::scene_dir(std::size_t i) const {
+  return scenes_[index_.at(i).scene].dir;
+}
+
+bool BopReader::has_gt_info(std::size_t i) const {
+  return scenes_[index_.at(i).scene].json.has_gt_info;
+}
+
 AnnotatedImage BopReader::load(std::size_t i) const {
   const Entry& entry = index_.at(i);
   const Scene& scene = scenes_[entry.scene];

@@ -28,6 +28,13 @@ class BopReader {
   // Images in (scene_id, im_id) order.
   std::size_t size() const { return index_.size(); }
   BopImageRef ref(std::size_t i) const;
+  // What the JSON files say about image i (poses, boxes, pixel counts; no image is read),
+  // for evaluators that need the annotations only.
+  const BopImageRecord& record(std::size_t i) const;
+  // The folder of image i's scene, and whether it has scene_gt_info.json (without it the
+  // records' boxes and counts are unset).
+  const std::string& scene_dir(std::size_t i) const;
+  bool has_gt_info(std::size_t i) const;
 
   // Image i: rgb (rgb/ or gray/, .png, .jpg, .jpeg or .tif; gray and 16-bit converted to
   // 8-bit RGB), depth in mm (value * depth_scale) when the scene has depth/, masks when it

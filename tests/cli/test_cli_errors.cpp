@@ -16,7 +16,7 @@ using namespace flexsight::cli_test_support;
 // --help is a request (usage on stdout, exit 0); a command without arguments is a
 // usage error (exit 1), for every command.
 TEST_F(Cli, HelpExitsZeroAndNoArgumentsExitsOne) {
-  for (const std::string command : {"stereo", "eval", "cloud", "render"}) {
+  for (const std::string command : {"stereo", "eval", "eval-det", "cloud", "render"}) {
     const RunResult help = run_flexsight(command + " --help", dir_);
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_NE(help.out.find("usage: flexsight " + command), std::string::npos)

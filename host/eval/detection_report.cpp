@@ -1,0 +1,137 @@
+#include "host/eval/detection_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace flexsight {
+
+const char* const kDetectionConventions =
+    "Boxes [x, y, w, h] in pixels, IoU without a +1 pixel (as pycocotools). VOC: per class, "
+    "detections of all images best score first, each matched to the unmatched ground truth "
+    "of its image with the highest IoU >= the threshold, else a false positive (ignored on a "
+    "crowd region); AP = area under the precision envelope over all recall points. COCO: "
+    "pycocotools' COCOeval (bbox, IoU 0.50:0.05:0.95, 101 recall points, 100 detections per "
+    "image and class, area range all). Means over the classes with ground truth.";
+
+namespace {
+
+constexpr int kMarkdownDecimals = 4;
+
+std::string fixed(double value) {
+  if (!std::isfinite(value)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", kMarkdownDecimals, value);
+  return text;
+}
+
+std::string threshold_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+std::string markdown_cell(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    if (c == '|') escaped += '\\';
+    escaped += (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return escaped;
+}
+
+// A fraction, or null where it is undefined (JSON has no NaN).
+nlohmann::ordered_json fraction(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+int crowd_regions(const DetectionScores& scores) {
+  int count = 0;
+  for (const ClassDetectionScores& c : scores.classes) count += c.crowd;
+  return count;
+}
+
+}  // namespace
+
+std::string to_markdown(const DetectionReport& report) {
+  const DetectionScores& s = report.scores;
+  const bool other_threshold = s.iou_threshold != 0.5;
+  std::string text = "# FlexSight detection evaluation\n\n";
+  text += "- Data set: `" + report.dataset + "` (" + report.dataset_format + ", " +
+          std::to_string(s.images) + " images, " + std::to_string(s.ground_truth) +
+          " ground-truth boxes, " + std::to_string(s.classes_with_ground_truth) +
+          " classes with ground truth)\n";
+  text += "- Detections: `" + report.detections + "` (" + report.detections_format + ", " +
+          std::to_string(s.detections) + " boxes)\n";
+  text += std::string("- Conventions: ") + kDetectionConventions + "\n\n";
+
+  text += "## Summary\n\n| metric | value |\n|---|---:|\n";
+  text += "| mAP@0.5 (VOC all-point) | " + fixed(s.map50) + " |\n";
+  text += "| mAP@[.5:.95] (COCO) | " + fixed(s.map50_95) + " |\n";
+  text += "| AP50 (COCO) | " + fixed(s.ap50_coco) + " |\n";
+  text += "| AP75 (COCO) | " + fixed(s.ap75) + " |\n";
+  if (other_threshold) {
+    text += "| mAP@" + threshold_text(s.iou_threshold) + " (VOC all-point) | " + fixed(s.map) + " |\n";
+  }
+
+  text += "\n## Per class\n\n| id | name | ground truth | detections | VOC AP@0.5 |";
+  std::string rule = "|---:|---|---:|---:|---:|";
+  if (other_threshold) {
+    text += " VOC AP@" + threshold_text(s.iou_threshold) + " |";
+    rule += "---:|";
+  }
+  text += " COCO AP | COCO AP50 | COCO AP75 |\n" + rule + "---:|---:|---:|\n";
+  for (const ClassDetectionScores& c : s.classes) {
+    text += "| " + std::to_string(c.category_id) + " | " + markdown_cell(c.name) + " | " +
+            std::to_string(c.ground_truth) + " | " + std::to_string(c.detections) + " | " +
+            fixed(c.voc_ap50) + " |";
+    if (other_threshold) text += " " + fixed(c.voc_ap) + " |";
+    text += " " + fixed(c.coco_ap) + " | " + fixed(c.coco_ap50) + " | " + fixed(c.coco_ap75) + " |\n";
+  }
+  text += "\nA class without ground truth shows `-`: it enters no mean.\n";
+  return text;
+}
+
+std::string to_json(const DetectionReport& report) {
+  const DetectionScores& s = report.scores;
+  nlohmann::ordered_json json;
+  json["dataset"] = report.dataset;
+  json["dataset_format"] = report.dataset_format;
+  json["detections_file"] = report.detections;
+  json["detections_format"] = report.detections_format;
+  json["images"] = s.images;
+  json["ground_truth_boxes"] = s.ground_truth;
+  json["crowd_regions"] = crowd_regions(s);
+  json["detections"] = s.detections;
+  json["classes_with_ground_truth"] = s.classes_with_ground_truth;
+  json["iou_threshold"] = s.iou_threshold;
+  json["map50"] = fraction(s.map50);
+  json["map50_95"] = fraction(s.map50_95);
+  json["ap50_coco"] = fraction(s.ap50_coco);
+  json["ap75"] = fraction(s.ap75);
+  json["map_at_iou_threshold"] = fraction(s.map);
+  json["conventions"] = kDetectionConventions;
+  json["classes"] = nlohmann::ordered_json::array();
+  for (const ClassDetectionScores& c : s.classes) {
+    nlohmann::ordered_json entry;
+    entry["category_id"] = c.category_id;
+    entry["name"] = c.name;
+    entry["ground_truth"] = c.ground_truth;
+    entry["crowd"] = c.crowd;
+    entry["detections"] = c.detections;
+    entry["voc_ap50"] = fraction(c.voc_ap50);
+    entry["voc_ap_at_iou_threshold"] = fraction(c.voc_ap);
+    entry["coco_ap"] = fraction(c.coco_ap);
+    entry["coco_ap50"] = fraction(c.coco_ap50);
+    entry["coco_ap75"] = fraction(c.coco_ap75);
+    json["classes"].push_back(std::move(entry));
+  }
+  nlohmann::ordered_json recall = nlohmann::ordered_json::array();
+  for (std::size_t r = 0; r < s.mean_precision_101.size(); ++r) {
+    recall.push_back(r + 1 == s.mean_precision_101.size() ? 1.0 : r * (1.0 / 100.0));
+  }
+  json["mean_pr_curve"] = {{"recall", recall}, {"precision", s.mean_precision_101}};
+  return json.dump(2) + "\n";
+}
+
+}  // namespace flexsight
