@@ -202,6 +202,9 @@ def forward(model, inputs, args):
     if args.train_all:
         return model(inputs)
     if args.tune_from >= 0:
+        if args.backbone_lr_factor == 0:  # the whole extractor frozen, run from a stem cache
+            with torch.no_grad():
+                return model.detector(*model.backbone.tail(inputs[0], args.tune_from))
         return model.detector(*model.backbone.tail(inputs[0], args.tune_from))
     return model.detector(*inputs)
 
@@ -318,6 +321,10 @@ def main(argv=None) -> int:
     ap.add_argument("--backbone-lr-factor", type=float, default=0.1,
                     help="learning rate of trained extractor layers relative to --lr")
     ap.add_argument("--limit", type=int, default=0, help="use only the first N images (0: all)")
+    ap.add_argument("--train-limit", type=int, default=0,
+                    help="train on the first N images of the training split only (0: all); the"
+                         " validation split and the cache stay those of the whole data set, so"
+                         " data-size experiments share one cache")
     ap.add_argument("--test", type=Path,
                     help="held-out data set folder (coco_instances.json): AP@0.5 per class at the end")
     ap.add_argument("--ap-images", type=int, default=500,
@@ -341,6 +348,8 @@ def main(argv=None) -> int:
     labels, targets = match_all(data, anchors)
     print("matching: %.1f positive anchors per image" % (labels > 0).sum(1).float().mean())
     train_idx, val_idx = split(len(data), args.val_fraction, args.seed)
+    if args.train_limit:
+        train_idx = train_idx[:args.train_limit]
     print("split: %d training, %d validation images" % (len(train_idx), len(val_idx)))
 
     if args.train_all:
@@ -358,7 +367,7 @@ def main(argv=None) -> int:
         for p in model.backbone.parameters():
             p.requires_grad_(False)
         params = [{"params": model.detector.parameters(), "lr": args.lr}]
-        if args.tune_from >= 0:
+        if args.tune_from >= 0 and args.backbone_lr_factor > 0:
             tuned = [p for b in model.backbone.blocks[args.tune_from:] for p in b.parameters()]
             tuned += list(model.backbone.conv1.parameters())
             for p in tuned:
