@@ -7,10 +7,10 @@
 //
 // The argument is OpenCV's thread count (cv::setNumThreads: the forward's layers and the
 // resize); the post-processing runs on the reference path, or on OpenCL (the device of
-// $FLEXSIGHT_OPENCL_DEVICE) in BM_DetectPostprocess/OpenCl. BM_DetectForward/DnnOpenCl
-// asks OpenCV DNN for its OpenCL target (OpenCV takes it only on Intel GPUs unless
-// OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1, and otherwise runs on the CPU). Run with
-// --benchmark_repetitions=N for medians.
+// $FLEXSIGHT_OPENCL_DEVICE) in BM_DetectPostprocess/OpenCl. BM_DetectForward_DnnOpenCl
+// runs the network on OpenCV DNN's OpenCL target: on a GPU, or (to measure it there) on
+// PoCL with OPENCV_OPENCL_DEVICE=:CPU: OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1; elsewhere
+// it reports why not. Run with --benchmark_repetitions=N for medians.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>

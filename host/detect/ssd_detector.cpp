@@ -1,6 +1,7 @@
 #include "host/detect/ssd_detector.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <opencv2/core/ocl.hpp>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/dnn.hpp>
@@ -70,9 +71,23 @@ cv::dnn::Net read_network(const std::string& path, DnnTarget target) {
   if (net.empty()) throw InputError(path, "OpenCV reads no layers from it");
   net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   if (target == DnnTarget::OpenCl) {
-    if (!cv::ocl::haveOpenCL()) {
+    // useOpenCL() is false when OpenCV has no device context: no runtime, or no device of
+    // the kind it looks for (GPUs by default; OPENCV_OPENCL_DEVICE=:CPU: for others).
+    if (!cv::ocl::useOpenCL()) {
       throw InputError("option --dnn-target",
-                       "opencl: OpenCV finds no OpenCL runtime or device (use cpu)");
+                       "opencl: OpenCV has no OpenCL device (it takes GPUs unless "
+                       "OPENCV_OPENCL_DEVICE names others, e.g. ':CPU:'); use cpu");
+    }
+    // OpenCV DNN itself would quietly run on the CPU on any other device than a GPU.
+    const cv::ocl::Device& device = cv::ocl::Device::getDefault();
+    const char* allow_all = std::getenv("OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES");
+    const bool allowed = allow_all != nullptr && std::string(allow_all) != "0" &&
+                         std::string(allow_all) != "";
+    if (device.type() != cv::ocl::Device::TYPE_GPU && !allowed) {
+      throw InputError("option --dnn-target",
+                       "opencl: OpenCV's OpenCL device " + device.name() +
+                           " is not a GPU, and OpenCV DNN runs its OpenCL layers on GPUs only "
+                           "(OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 overrides that); use cpu");
     }
     net.setPreferableTarget(cv::dnn::DNN_TARGET_OPENCL);
   } else {

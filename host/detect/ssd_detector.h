@@ -33,8 +33,10 @@ enum class DnnTarget {
   // OpenCV's CPU layers (threads: cv::setNumThreads).
   Cpu,
   // OpenCV's OpenCL layers on OpenCV's own OpenCL device (its T-API context, not the
-  // post-processing's). OpenCV 4.6 uses it only on Intel GPUs unless the environment sets
-  // OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1; elsewhere it warns and runs on the CPU.
+  // post-processing's: a GPU unless OPENCV_OPENCL_DEVICE says otherwise). OpenCV 4.6 DNN
+  // takes only GPUs unless OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 (on other devices it
+  // would fall back to its CPU layers quietly; the detector refuses instead). On PoCL it
+  // is some 25x slower than Cpu.
   OpenCl,
 };
 

@@ -164,6 +164,35 @@ TEST_F(DetectCli, ReferenceAndOpenClWriteTheSameBytes) {
   EXPECT_EQ(reference_bytes, read_text(opencl));
 }
 
+// The network on OpenCV DNN's OpenCL layers, here on PoCL (OpenCV takes CPU devices and
+// DNN runs on them only when told): the same detections as its CPU layers, up to rounding.
+TEST_F(DetectCli, DnnOpenClTargetFindsWhatTheCpuFinds) {
+  const std::string cpu = (dir_ / "cpu.json").string();
+  RunResult a = run_flexsight(detect(tiny_ssd_image() + " -o " + cpu), dir_);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  RunResult b = run_flexsight(detect(tiny_ssd_image() + " -o " + json_ + " --dnn-target opencl"),
+                              dir_, "OPENCV_OPENCL_DEVICE=:CPU: OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 ");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.err.find("network on OpenCV DNN (opencl, "), std::string::npos) << b.err;
+  const nlohmann::json on_cpu = nlohmann::json::parse(read_text(cpu));
+  const nlohmann::json on_opencl = nlohmann::json::parse(read_text(json_));
+  ASSERT_EQ(on_opencl.size(), on_cpu.size());
+  for (size_t i = 0; i < on_cpu.size(); ++i) {
+    EXPECT_EQ(on_opencl[i]["category_id"], on_cpu[i]["category_id"]);
+    EXPECT_NEAR(on_opencl[i]["score"].get<double>(), on_cpu[i]["score"].get<double>(), 1e-5);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR(on_opencl[i]["bbox"][k].get<double>(), on_cpu[i]["bbox"][k].get<double>(), 1e-2);
+    }
+  }
+  // Without the permission OpenCV DNN would run on its CPU layers; the command says so.
+  RunResult c = run_flexsight(detect(tiny_ssd_image() + " --dnn-target opencl"), dir_,
+                              "OPENCV_OPENCL_DEVICE=:CPU: env -u OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES ");
+  EXPECT_EQ(c.exit_code, 1);
+  EXPECT_NE(c.err.find("option --dnn-target: opencl: OpenCV's OpenCL device "), std::string::npos)
+      << c.err;
+  EXPECT_NE(c.err.find(" is not a GPU"), std::string::npos) << c.err;
+}
+
 TEST_F(DetectCli, ParametersReachThePostprocessing) {
   RunResult r = run_flexsight(
       detect(tiny_ssd_image() + " -o " + json_ + " --max-detections 3 --score 0.9"), dir_);
