@@ -36,7 +36,7 @@ enum class DnnTarget {
   // post-processing's: a GPU unless OPENCV_OPENCL_DEVICE says otherwise). OpenCV 4.6 DNN
   // takes only GPUs unless OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 (on other devices it
   // would fall back to its CPU layers quietly; the detector refuses instead). On PoCL it
-  // is some 25x slower than Cpu.
+  // is some 35x slower than Cpu.
   OpenCl,
 };
 
