@@ -50,7 +50,8 @@ SsdDetector* detector(BackendKind kind, DnnTarget target, std::string* why) {
   if (detectors.count(key)) return detectors[key].get();
   const std::string path = model_path();
   if (!std::filesystem::exists(path)) {
-    *why = "no detector model at " + path + ": set FLEXSIGHT_DETECT_MODEL to a model.onnx "
+    *why = "no detector model at " + path +
+           ": set FLEXSIGHT_DETECT_MODEL to a model.onnx "
            "(with anchors.csv and labels.txt beside it)";
     return nullptr;
   }

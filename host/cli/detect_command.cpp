@@ -37,8 +37,9 @@ void print_help() {
          "files) with an SSD detector. The inputs are sorted by path; an image's image_id is\n"
          "its 1-based position in that sorted list.\n"
          "  --model M.onnx          the detector: M.onnx with anchors.csv, labels.txt and\n"
-         "                          optionally model.json beside it (default: $FLEXSIGHT_DETECT_MODEL,\n"
-         "                          else the shipped "
+         "                          optionally model.json beside it (default:\n"
+         "                          $FLEXSIGHT_DETECT_MODEL, else the shipped\n"
+         "                          "
       << default_detector_model_path()
       << ")\n"
          "  -o DETS.json            detections in the COCO results format: a list of\n"
@@ -49,7 +50,8 @@ void print_help() {
          "  --score S               keep boxes scoring above S, in [0, 1] (default 0.3)\n"
          "  --iou I                 suppress a box overlapping a better one of its class by\n"
          "                          IoU > I, in [0, 1] (default 0.6)\n"
-         "  --top-k K               candidates per class entering suppression, 1..1024 (default 100)\n"
+         "  --top-k K               candidates per class entering suppression, 1..1024\n"
+         "                          (default 100)\n"
          "  --max-detections N      detections per image at most, 1..100000 (default 100)\n"
          "  --dnn-target cpu|opencl where OpenCV DNN runs the network (default cpu; opencl: on\n"
          "                          OpenCV's own OpenCL device, GPUs only unless\n"
@@ -114,12 +116,14 @@ std::string resolve_model(const std::string& given) {
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     if (default_detector_model_from_environment()) {
-      throw InputError(path, "does not exist (FLEXSIGHT_DETECT_MODEL names it as the default "
-                             "model); set it to a model.onnx or pass --model M.onnx");
+      throw InputError(path,
+                       "does not exist (FLEXSIGHT_DETECT_MODEL names it as the default "
+                       "model); set it to a model.onnx or pass --model M.onnx");
     }
-    throw InputError(path, "the default detector model does not exist (the shipped T-LESS "
-                           "model is not in this checkout); pass --model M.onnx or set "
-                           "FLEXSIGHT_DETECT_MODEL");
+    throw InputError(path,
+                     "the default detector model does not exist (the shipped T-LESS "
+                     "model is not in this checkout); pass --model M.onnx or set "
+                     "FLEXSIGHT_DETECT_MODEL");
   }
   return path;
 }
@@ -165,9 +169,8 @@ void print_timing(const StageTimes& times, size_t images, double wall_seconds) {
   std::fprintf(stderr,
                "time per image (median of %zu): read %.1f ms, preprocess %.1f ms, forward "
                "%.1f ms, post-process %.2f ms; %.1f images/s end to end (reading included)\n",
-               images, median_ms(times.read), median_ms(times.preprocess),
-               median_ms(times.forward), median_ms(times.postprocess),
-               wall_seconds > 0.0 ? images / wall_seconds : 0.0);
+               images, median_ms(times.read), median_ms(times.preprocess), median_ms(times.forward),
+               median_ms(times.postprocess), wall_seconds > 0.0 ? images / wall_seconds : 0.0);
 }
 
 }  // namespace
@@ -184,8 +187,8 @@ int run_detect_command(std::vector<std::string> args) {
   if (options.threads > 0) cv::setNumThreads(options.threads);
   ComputeBackend backend(options.backend);
   SsdDetector detector(model, backend, options.detector);
-  std::cerr << "detect: " << files.size() << " image" << (files.size() == 1 ? "" : "s")
-            << " with " << model << "; " << detector.planned() << "\n";
+  std::cerr << "detect: " << files.size() << " image" << (files.size() == 1 ? "" : "s") << " with "
+            << model << "; " << detector.planned() << "\n";
 
   std::vector<ImageDetections> results;
   std::vector<cv::Mat> sheet_images;  // RGB, the first kSheetImages, for --png
@@ -230,9 +233,9 @@ int run_detect_command(std::vector<std::string> args) {
   }
   if (!options.output.empty()) {
     write_coco_results(options.output, results);
-    std::cerr << "wrote " << detections << " detection" << (detections == 1 ? "" : "s")
-              << " of " << results.size() << " image" << (results.size() == 1 ? "" : "s")
-              << " to " << options.output << "\n";
+    std::cerr << "wrote " << detections << " detection" << (detections == 1 ? "" : "s") << " of "
+              << results.size() << " image" << (results.size() == 1 ? "" : "s") << " to "
+              << options.output << "\n";
   } else {
     std::cout << detection_table(results, detector.labels());
   }

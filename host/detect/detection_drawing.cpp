@@ -10,10 +10,10 @@ namespace {
 
 // A bright colour per category id, the same in every image.
 cv::Scalar category_colour(int category_id) {
-  static const cv::Scalar kPalette[] = {{230, 25, 75},  {60, 180, 75},  {255, 225, 25},
-                                        {0, 130, 200},  {245, 130, 48}, {145, 30, 180},
-                                        {70, 240, 240}, {240, 50, 230}, {210, 245, 60},
-                                        {250, 190, 212}, {0, 128, 128}, {220, 190, 255}};
+  static const cv::Scalar kPalette[] = {{230, 25, 75},   {60, 180, 75},  {255, 225, 25},
+                                        {0, 130, 200},   {245, 130, 48}, {145, 30, 180},
+                                        {70, 240, 240},  {240, 50, 230}, {210, 245, 60},
+                                        {250, 190, 212}, {0, 128, 128},  {220, 190, 255}};
   const int count = sizeof kPalette / sizeof kPalette[0];
   return kPalette[((category_id % count) + count) % count];
 }
@@ -41,7 +41,8 @@ cv::Mat draw_detections(const cv::Mat& rgb, const std::vector<ObjectDetection>& 
   if (scale == 1.0) {
     picture = rgb.clone();
   } else {
-    cv::resize(rgb, picture, cv::Size(), scale, scale, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+    cv::resize(rgb, picture, cv::Size(), scale, scale,
+               scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
   }
   for (auto it = found.rbegin(); it != found.rend(); ++it) {
     const cv::Point top_left(cvRound(it->box[0] * scale), cvRound(it->box[1] * scale));

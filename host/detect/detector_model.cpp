@@ -42,8 +42,8 @@ float positive_scale(const std::string& path, const nlohmann::json& value) {
     const double number = value.get<double>();
     if (std::isfinite(number) && number > 0.0) return static_cast<float>(number);
   }
-  throw InputError(path, "\"box_scale\" must be 4 positive numbers (y, x, h, w), got " +
-                             value.dump());
+  throw InputError(path,
+                   "\"box_scale\" must be 4 positive numbers (y, x, h, w), got " + value.dump());
 }
 
 }  // namespace
@@ -73,18 +73,17 @@ DetectorSettings read_detector_settings(const std::string& path) {
   if (json.contains("score_function")) {
     const nlohmann::json& value = json["score_function"];
     if (!value.is_string()) {
-      throw InputError(path, "\"score_function\" must be \"softmax\" or \"sigmoid\", got " +
-                                 value.dump());
+      throw InputError(
+          path, "\"score_function\" must be \"softmax\" or \"sigmoid\", got " + value.dump());
     }
     settings.score_function =
         parse_score_function(value.get<std::string>(), path + ": \"score_function\"");
   }
   if (json.contains("input_size")) {
     const nlohmann::json& value = json["input_size"];
-    if (!value.is_number_integer() || value.get<long long>() < 1 ||
-        value.get<long long>() > 4096) {
-      throw InputError(path, "\"input_size\" must be a whole number of pixels in 1..4096, got " +
-                                 value.dump());
+    if (!value.is_number_integer() || value.get<long long>() < 1 || value.get<long long>() > 4096) {
+      throw InputError(
+          path, "\"input_size\" must be a whole number of pixels in 1..4096, got " + value.dump());
     }
     settings.input_size = value.get<int>();
   }
@@ -107,8 +106,8 @@ DetectorSettings read_detector_settings(const std::string& path) {
   if (json.contains("box_scale")) {
     const nlohmann::json& value = json["box_scale"];
     if (!value.is_array() || value.size() != 4) {
-      throw InputError(path, "\"box_scale\" must be 4 positive numbers (y, x, h, w), got " +
-                                 value.dump());
+      throw InputError(
+          path, "\"box_scale\" must be 4 positive numbers (y, x, h, w), got " + value.dump());
     }
     settings.box_scale = {positive_scale(path, value[0]), positive_scale(path, value[1]),
                           positive_scale(path, value[2]), positive_scale(path, value[3])};

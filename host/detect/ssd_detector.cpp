@@ -81,8 +81,8 @@ cv::dnn::Net read_network(const std::string& path, DnnTarget target) {
     // OpenCV DNN itself would quietly run on the CPU on any other device than a GPU.
     const cv::ocl::Device& device = cv::ocl::Device::getDefault();
     const char* allow_all = std::getenv("OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES");
-    const bool allowed = allow_all != nullptr && std::string(allow_all) != "0" &&
-                         std::string(allow_all) != "";
+    const bool allowed =
+        allow_all != nullptr && std::string(allow_all) != "0" && std::string(allow_all) != "";
     if (device.type() != cv::ocl::Device::TYPE_GPU && !allowed) {
       throw InputError("option --dnn-target",
                        "opencl: OpenCV's OpenCL device " + device.name() +
@@ -95,8 +95,8 @@ cv::dnn::Net read_network(const std::string& path, DnnTarget target) {
   }
   for (const char* name : {kBoxOutput, kLogitOutput}) {
     if (net.getLayerId(name) < 0) {
-      throw InputError(path, std::string("has no output '") + name + "' (its outputs: " +
-                                 join(net.getUnconnectedOutLayersNames()) +
+      throw InputError(path, std::string("has no output '") + name +
+                                 "' (its outputs: " + join(net.getUnconnectedOutLayersNames()) +
                                  "); the detector needs box_encodings [1, N, 4] and "
                                  "class_logits [1, N, C + 1]");
     }
@@ -172,10 +172,9 @@ void SsdDetector::load(const std::string& model_path, ComputeBackend& backend,
     QuietOpenCvLog quiet;
     blank = forward(preprocess(cv::Mat(size, size, CV_8UC3, cv::Scalar::all(127.5))));
   } catch (const cv::Exception& error) {
-    throw InputError(m.files.model, "OpenCV DNN cannot run it on a [1, 3, " +
-                                        std::to_string(size) + ", " + std::to_string(size) +
-                                        "] input (input_size " + std::to_string(size) +
-                                        ", model.json): " + error.err);
+    throw InputError(m.files.model, "OpenCV DNN cannot run it on a [1, 3, " + std::to_string(size) +
+                                        ", " + std::to_string(size) + "] input (input_size " +
+                                        std::to_string(size) + ", model.json): " + error.err);
   }
   m.anchors = blank.box_encodings.rows;
   m.classes = blank.class_logits.cols - 1;
@@ -188,14 +187,14 @@ void SsdDetector::load(const std::string& model_path, ComputeBackend& backend,
 
   m.labels = read_detector_labels(m.files.labels);
   if (static_cast<int>(m.labels.size()) != m.classes) {
-    throw InputError(m.files.labels,
-                     "lists " + std::to_string(m.labels.size()) +
-                         " classes besides the background, the model outputs " +
-                         std::to_string(m.classes + 1) + " logit columns (" +
-                         std::to_string(m.classes) + " classes and the background)");
+    throw InputError(m.files.labels, "lists " + std::to_string(m.labels.size()) +
+                                         " classes besides the background, the model outputs " +
+                                         std::to_string(m.classes + 1) + " logit columns (" +
+                                         std::to_string(m.classes) +
+                                         " classes and the background)");
   }
-  m.post = std::make_unique<SsdPostprocessor>(backend,
-                                              read_anchor_file(m.files.anchors, m.anchors));
+  m.post =
+      std::make_unique<SsdPostprocessor>(backend, read_anchor_file(m.files.anchors, m.anchors));
 }
 
 SsdDetector::~SsdDetector() = default;
@@ -223,10 +222,10 @@ SsdNetworkOutputs SsdDetector::forward(const cv::Mat& blob) {
     const cv::Mat& b = blobs[i];
     if (b.dims != 3 || b.size[0] != 1 || b.size[1] < 1 ||
         (columns > 0 ? b.size[2] != columns : b.size[2] < 2)) {
-      throw InputError(m.files.model,
-                       std::string("output ") + (i == 0 ? kBoxOutput : kLogitOutput) +
-                           " has the shape " + shape_text(b) + ", expected " +
-                           (i == 0 ? "[1, N, 4]" : "[1, N, C + 1] with C >= 1"));
+      throw InputError(m.files.model, std::string("output ") +
+                                          (i == 0 ? kBoxOutput : kLogitOutput) + " has the shape " +
+                                          shape_text(b) + ", expected " +
+                                          (i == 0 ? "[1, N, 4]" : "[1, N, C + 1] with C >= 1"));
     }
   }
   SsdNetworkOutputs outputs;

@@ -16,10 +16,9 @@
 //      process's ComputeBackend, with the model's score function (model.json), boxes then
 //      scaled to the image's pixels and classes mapped to labels.txt's category ids.
 #include <memory>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "host/detect/detection.h"
 #include "host/detect/detector_model.h"
@@ -114,8 +113,7 @@ class SsdDetector {
   // detect()'s stages one by one, for tests and benchmarks.
   cv::Mat preprocess(const cv::Mat& bgr) const;
   SsdNetworkOutputs forward(const cv::Mat& blob);
-  std::vector<ObjectDetection> postprocess(const SsdNetworkOutputs& outputs,
-                                           cv::Size image_size);
+  std::vector<ObjectDetection> postprocess(const SsdNetworkOutputs& outputs, cv::Size image_size);
 
   // Rows N of the outputs (= anchors) and foreground classes C.
   int anchor_count() const;

@@ -14,9 +14,9 @@ Each SSD layer's "feature map" is the image averaged over windows (19x19: 30-pix
 those mean colours, as the real heads are 1x1 convolutions of the feature maps. The class heads
 are set by hand so that the outputs can be predicted: class k (1 red, 2 green, 3 blue) has logit
 4 c_k - 2 (sum of the other two channels) + 0.1 (k - 1), the background a constant 1 (plus 0.05
-per anchor slot, so that anchors of one cell do not all tie). A window of pure red (1, -1, -1) gives red 8,
-green and blue -4, background 1: softmax 0.999 for red; a grey window gives every class 0 and the
-background 1 (class scores 0.17, below the 0.3 threshold). The box heads have small seeded random
+per anchor slot, so that anchors of one cell do not all tie). A window of pure red (1, -1, -1)
+gives red 8, green -3.9, blue -3.8, background 1: softmax 0.999 for red; a grey window gives the
+classes 0, 0.1, 0.2 and the background 1 (class scores 0.2 at most, below the 0.3 threshold). The box heads have small seeded random
 weights, so boxes move with the image content. Category ids 5, 7, 9 (not 1, 2, 3) make the test
 notice a mix-up of class index and category id.
 

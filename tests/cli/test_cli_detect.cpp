@@ -85,8 +85,8 @@ TEST_F(DetectCli, WritesCocoResults) {
       nlohmann::json::parse(read_text(tiny_ssd_dir() + "/expected_detections.json"));
   const nlohmann::json& best = expected["detections"][0];
   const nlohmann::json& first = results[0];
-  EXPECT_EQ(first["category_id"], best["class_id"].get<int>() == 0 ? kTinyRedCategory
-                                                                   : kTinyBlueCategory);
+  EXPECT_EQ(first["category_id"],
+            best["class_id"].get<int>() == 0 ? kTinyRedCategory : kTinyBlueCategory);
   EXPECT_NEAR(first["score"].get<double>(), best["score"].get<double>(), 1e-5);
   const double x0 = best["box"][0].get<double>() * 317, y0 = best["box"][1].get<double>() * 241;
   const double x1 = best["box"][2].get<double>() * 317, y1 = best["box"][3].get<double>() * 241;
@@ -109,9 +109,8 @@ TEST_F(DetectCli, PrintsATableWithoutOutputFile) {
 // A folder's images in name order, numbered from 1, other files ignored; each pure colour
 // found as its class.
 TEST_F(DetectCli, AFolderIsSortedAndNumbered) {
-  const fs::path folder = colour_folder({{"c_blue.png", {255, 0, 0}},
-                                         {"a_red.jpg", {0, 0, 255}},
-                                         {"b_green.JPEG", {0, 255, 0}}});
+  const fs::path folder = colour_folder(
+      {{"c_blue.png", {255, 0, 0}}, {"a_red.jpg", {0, 0, 255}}, {"b_green.JPEG", {0, 255, 0}}});
   write_text(folder / "notes.txt", "not an image");
   RunResult r =
       run_flexsight(detect(folder.string() + " -o " + json_ + " --png " + png_ + " --quiet"), dir_);
@@ -152,8 +151,8 @@ TEST_F(DetectCli, ReferenceAndOpenClWriteTheSameBytes) {
   const std::string inputs = folder.string() + " --model " + tiny_ssd_model() + " --quiet";
   const std::string reference = (dir_ / "reference.json").string();
   const std::string opencl = (dir_ / "opencl.json").string();
-  RunResult a = run_flexsight("detect " + inputs + " -o " + reference + " --device reference",
-                              dir_);
+  RunResult a =
+      run_flexsight("detect " + inputs + " -o " + reference + " --device reference", dir_);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   EXPECT_NE(a.err.find("post-processing on the reference path"), std::string::npos) << a.err;
   RunResult b = run_flexsight("detect " + inputs + " -o " + opencl + " --device opencl", dir_);
@@ -170,8 +169,9 @@ TEST_F(DetectCli, DnnOpenClTargetFindsWhatTheCpuFinds) {
   const std::string cpu = (dir_ / "cpu.json").string();
   RunResult a = run_flexsight(detect(tiny_ssd_image() + " -o " + cpu), dir_);
   ASSERT_EQ(a.exit_code, 0) << a.err;
-  RunResult b = run_flexsight(detect(tiny_ssd_image() + " -o " + json_ + " --dnn-target opencl"),
-                              dir_, "OPENCV_OPENCL_DEVICE=:CPU: OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 ");
+  RunResult b =
+      run_flexsight(detect(tiny_ssd_image() + " -o " + json_ + " --dnn-target opencl"), dir_,
+                    "OPENCV_OPENCL_DEVICE=:CPU: OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1 ");
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_NE(b.err.find("network on OpenCV DNN (opencl, "), std::string::npos) << b.err;
   const nlohmann::json on_cpu = nlohmann::json::parse(read_text(cpu));
@@ -185,8 +185,9 @@ TEST_F(DetectCli, DnnOpenClTargetFindsWhatTheCpuFinds) {
     }
   }
   // Without the permission OpenCV DNN would run on its CPU layers; the command says so.
-  RunResult c = run_flexsight(detect(tiny_ssd_image() + " --dnn-target opencl"), dir_,
-                              "OPENCV_OPENCL_DEVICE=:CPU: env -u OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES ");
+  RunResult c =
+      run_flexsight(detect(tiny_ssd_image() + " --dnn-target opencl"), dir_,
+                    "OPENCV_OPENCL_DEVICE=:CPU: env -u OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES ");
   EXPECT_EQ(c.exit_code, 1);
   EXPECT_NE(c.err.find("option --dnn-target: opencl: OpenCV's OpenCL device "), std::string::npos)
       << c.err;
@@ -326,8 +327,8 @@ INSTANTIATE_TEST_SUITE_P(BadInputs, DetectCliRejects, ::testing::ValuesIn(kBadDe
                          });
 
 TEST_F(DetectCli, AnOutputInAMissingFolderIsRejectedFirst) {
-  RunResult r = run_flexsight(detect(tiny_ssd_image() + " -o " + (dir_ / "no/dets.json").string()),
-                              dir_);
+  RunResult r =
+      run_flexsight(detect(tiny_ssd_image() + " -o " + (dir_ / "no/dets.json").string()), dir_);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find((dir_ / "no/dets.json").string() +
                        ": cannot be written: its folder does not exist"),
