@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <set>
@@ -147,6 +148,11 @@ void check_outputs(const DetectOptions& options, const std::vector<std::string>&
   }
   if (!options.output.empty() && options.output == options.png) {
     throw InputError("option --png", "names the same file as -o");
+  }
+  if (!options.png.empty() && !cv::haveImageWriter(options.png)) {
+    throw InputError(options.png,
+                     "cannot be written: OpenCV has no encoder for its extension "
+                     "(use .png or .jpg)");
   }
 }
 

@@ -326,6 +326,18 @@ INSTANTIATE_TEST_SUITE_P(BadInputs, DetectCliRejects, ::testing::ValuesIn(kBadDe
                            return std::string(info.param.name);
                          });
 
+TEST_F(DetectCli, APictureWithoutAnImageExtensionIsRejectedFirst) {
+  const std::string picture = (dir_ / "boxes.txt").string();
+  RunResult r =
+      run_flexsight(detect(tiny_ssd_image() + " -o " + json_ + " --png " + picture), dir_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(picture + ": cannot be written: OpenCV has no encoder for its extension"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("detect: 1 image"), std::string::npos) << "checked after loading: " << r.err;
+  EXPECT_FALSE(fs::exists(json_));
+}
+
 TEST_F(DetectCli, AnOutputInAMissingFolderIsRejectedFirst) {
   RunResult r =
       run_flexsight(detect(tiny_ssd_image() + " -o " + (dir_ / "no/dets.json").string()), dir_);
