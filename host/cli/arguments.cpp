@@ -230,6 +230,22 @@ double take_number_option(std::vector<std::string>& args, const std::string& nam
   return parse_float(name.substr(name.find_first_not_of('-')), text);
 }
 
+std::int64_t parse_whole_number(const std::string& option, const std::string& text,
+                                std::int64_t lo, std::int64_t hi) {
+  std::size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;  // not a number, or beyond long long
+  }
+  if (used == 0 || used != text.size() || value < lo || value > hi) {
+    throw InputError("option " + option, "expected a whole number in " + std::to_string(lo) +
+                                             ".." + std::to_string(hi) + ", got '" + text + "'");
+  }
+  return value;
+}
+
 std::string take_option(std::vector<std::string>& args, const std::string& name) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] != name) continue;

@@ -1,5 +1,6 @@
 #pragma once
 // Command-line parsing shared by the subcommands.
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,12 @@ std::string take_option(std::vector<std::string>& args, const std::string& name)
 // absent. Throws InputError ("option --name: expected a number ...") when malformed.
 double take_number_option(std::vector<std::string>& args, const std::string& name,
                           double fallback);
+
+// `text`, the value of `option` ("--count"), as a whole number in lo..hi. Throws
+// InputError ("option --count: expected a whole number in 1..100, got '4294967312'") for
+// anything else: no wrap-around into the range, no trailing characters, no fraction.
+std::int64_t parse_whole_number(const std::string& option, const std::string& text,
+                                std::int64_t lo, std::int64_t hi);
 
 // Removes "--name" from args and returns whether it was there.
 bool take_flag(std::vector<std::string>& args, const std::string& name);

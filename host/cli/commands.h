@@ -12,5 +12,6 @@ int run_devices_command(std::vector<std::string> args);
 int run_cloud_command(std::vector<std::string> args);
 int run_render_command(std::vector<std::string> args);
 int run_synth_command(std::vector<std::string> args);
+int run_detect_command(std::vector<std::string> args);
 
 }  // namespace flexsight

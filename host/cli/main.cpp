@@ -19,6 +19,7 @@ void print_usage() {
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
                "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
+               "  detect IMAGE... [-o DETS.json] [options]  find the parts in images (SSD detector)\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     if (command == "devices") return flexsight::run_devices_command(args);
     if (command == "render") return flexsight::run_render_command(args);
     if (command == "synth") return flexsight::run_synth_command(args);
+    if (command == "detect") return flexsight::run_detect_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();
       return 0;

@@ -24,22 +24,6 @@ namespace {
 constexpr int kImagesPerScene = 1000;
 constexpr int kContactSheetImages = 16;
 
-std::int64_t whole_number(const std::string& option, const std::string& text, std::int64_t lo,
-                          std::int64_t hi) {
-  std::size_t used = 0;
-  long long value = 0;
-  try {
-    value = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || value < lo || value > hi) {
-    throw InputError("option " + option, "expected a whole number in " + std::to_string(lo) +
-                                             ".." + std::to_string(hi) + ", got '" + text + "'");
-  }
-  return value;
-}
-
 }  // namespace
 
 std::string synth_options_help() {
@@ -69,17 +53,22 @@ SynthRunOptions take_synth_run_options(std::vector<std::string>& args) {
 
   if (options.output.empty()) throw InputError("option -o", "an output folder is required");
   if (count.empty()) throw InputError("option --count", "the number of images is required");
-  options.count = whole_number("--count", count, 1, std::int64_t(1) << 40);
-  if (!seed.empty()) options.seed = static_cast<std::uint32_t>(whole_number("--seed", seed, 0, 4294967295LL));
-  if (!threads.empty()) options.threads = static_cast<int>(whole_number("--threads", threads, 0, 4096));
+  options.count = parse_whole_number("--count", count, 1, std::int64_t(1) << 40);
+  if (!seed.empty()) {
+    options.seed = static_cast<std::uint32_t>(parse_whole_number("--seed", seed, 0, 4294967295LL));
+  }
+  if (!threads.empty()) {
+    options.threads = static_cast<int>(parse_whole_number("--threads", threads, 0, 4096));
+  }
   if (!shard.empty()) {
     const std::size_t slash = shard.find('/');
     if (slash == std::string::npos) {
       throw InputError("option --shard", "expected I/N (e.g. 3/100), got '" + shard + "'");
     }
-    options.shard_count = static_cast<int>(whole_number("--shard", shard.substr(slash + 1), 1, 1000000));
+    options.shard_count =
+        static_cast<int>(parse_whole_number("--shard", shard.substr(slash + 1), 1, 1000000));
     options.shard_index = static_cast<int>(
-        whole_number("--shard", shard.substr(0, slash), 0, options.shard_count - 1));
+        parse_whole_number("--shard", shard.substr(0, slash), 0, options.shard_count - 1));
     if (options.shard_count > options.count) {
       throw InputError("option --shard", "more shards (" + std::to_string(options.shard_count) +
                                              ") than images (" + std::to_string(options.count) + ")");

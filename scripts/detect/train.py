@@ -12,7 +12,8 @@ best anchor of every ground-truth box) and softmax cross-entropy with hard-negat
 3 negatives per positive, both divided by the number of positives.
 
 Writes into --out: model.pt (checkpoint), model.onnx (checked in cv2.dnn when importable),
-anchors.csv, labels.txt, log.csv, loss.png, summary.json (timings, losses, AP@0.5 of the
+anchors.csv, labels.txt, model.json (score function, input size and range, box scale), log.csv,
+loss.png, summary.json (timings, losses, AP@0.5 of the
 validation images and of as many training images).
 
     python3 train.py --data DIR --out RUN --epochs 30
@@ -276,11 +277,22 @@ def plot(log_rows, path: Path) -> None:
     plt.close(fig)
 
 
+def write_model_json(path: Path, image_size: int = 300) -> None:
+    """model.json: what the C++ detector (host/detect/detector_model.h) must know about the model
+    that the ONNX graph does not say. Scores by softmax because the loss is softmax
+    cross-entropy (the C++ post-processing's own default is the TF OD API's sigmoid); the input
+    is RGB scaled to [-1, 1]; boxes are encoded with the scale factors 10, 10, 5, 5."""
+    settings = {"score_function": "softmax", "input_size": image_size, "input_range": [-1, 1],
+                "color_order": "rgb", "box_scale": [int(s) for s in anc.SCALE_FACTORS]}
+    path.write_text(json.dumps(settings, indent=1) + "\n")
+
+
 def write_outputs(model, data, out: Path) -> None:
     anc.write_sidecar(out / "anchors.csv")
     lines = ["0 0 background"] + ["%d %d %s" % (i + 1, c["id"], c.get("name", c["id"]))
                                   for i, c in enumerate(data.categories)]
     (out / "labels.txt").write_text("\n".join(lines) + "\n")
+    write_model_json(out / "model.json", model.image_size)
     from export_onnx import check_with_opencv, export
     export(model, out / "model.onnx")
     try:

@@ -54,6 +54,18 @@ class TrainSmoke(unittest.TestCase):
         self.assertEqual(len(labels), 24)
         self.assertEqual(labels[0], "0 0 background")
         self.assertEqual(labels[1], "1 2 obj_02")
+        self.assertEqual(json.loads((run / "model.json").read_text()),
+                         {"score_function": "softmax", "input_size": 300, "input_range": [-1, 1],
+                          "color_order": "rgb", "box_scale": [10, 10, 5, 5]})
+        # The C++ detector takes the folder as written (--score 0: every box is a candidate).
+        dets = WORK / "dets.json"
+        subprocess.run([str(FLEXSIGHT), "detect", str(data / "000000" / "rgb"), "--model",
+                        str(run / "model.onnx"), "-o", str(dets), "--score", "0", "--quiet"],
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        results = json.loads(dets.read_text())
+        self.assertEqual({d["image_id"] for d in results}, set(range(1, 17)))
+        category_ids = {int(line.split()[1]) for line in labels[1:]}
+        self.assertTrue({d["category_id"] for d in results} <= category_ids)
         # A second run on the same images reuses the cache.
         self.assertEqual(train.main(["--data", str(data), "--out", str(run), "--epochs", "1",
                                      "--batch-size", "4", "--no-export"]), 0)
