@@ -110,25 +110,6 @@ DetectOptions take_detect_options(std::vector<std::string>& args) {
   return options;
 }
 
-// The model path: --model, else the default, whose absence gets its own message.
-std::string resolve_model(const std::string& given) {
-  if (!given.empty()) return given;
-  const std::string path = default_detector_model_path();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    if (default_detector_model_from_environment()) {
-      throw InputError(path,
-                       "does not exist (FLEXSIGHT_DETECT_MODEL names it as the default "
-                       "model); set it to a model.onnx or pass --model M.onnx");
-    }
-    throw InputError(path,
-                     "the default detector model does not exist (the shipped T-LESS "
-                     "model is not in this checkout); pass --model M.onnx or set "
-                     "FLEXSIGHT_DETECT_MODEL");
-  }
-  return path;
-}
-
 // Every output's folder exists and no two outputs share a path, checked before the model
 // loads, so that a mistyped path fails in a second.
 void check_outputs(const DetectOptions& options, const std::vector<std::string>& images) {
@@ -189,7 +170,7 @@ int run_detect_command(std::vector<std::string> args) {
   // Everything that can be checked is, before any image is processed or output written.
   const std::vector<std::string> files = list_input_images(args);
   check_outputs(options, files);
-  const std::string model = resolve_model(options.model);
+  const std::string model = resolve_detector_model_path(options.model);
   if (options.threads > 0) cv::setNumThreads(options.threads);
   ComputeBackend backend(options.backend);
   SsdDetector detector(model, backend, options.detector);

@@ -168,4 +168,22 @@ bool default_detector_model_from_environment() {
   return environment != nullptr && *environment != '\0';
 }
 
+std::string resolve_detector_model_path(const std::string& given) {
+  if (!given.empty()) return given;
+  const std::string path = default_detector_model_path();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    if (default_detector_model_from_environment()) {
+      throw InputError(path,
+                       "does not exist (FLEXSIGHT_DETECT_MODEL names it as the default "
+                       "model); set it to a model.onnx or pass --model M.onnx");
+    }
+    throw InputError(path,
+                     "the default detector model does not exist (the shipped T-LESS "
+                     "model is not in this checkout); pass --model M.onnx or set "
+                     "FLEXSIGHT_DETECT_MODEL");
+  }
+  return path;
+}
+
 }  // namespace flexsight

@@ -64,4 +64,9 @@ std::string default_detector_model_path();
 // Whether default_detector_model_path() comes from FLEXSIGHT_DETECT_MODEL.
 bool default_detector_model_from_environment();
 
+// The model a command runs: `given` (its --model) when not empty, else the default, whose
+// absence is an InputError of its own (the shipped model missing from the checkout, or
+// FLEXSIGHT_DETECT_MODEL naming a file that is not there).
+std::string resolve_detector_model_path(const std::string& given);
+
 }  // namespace flexsight

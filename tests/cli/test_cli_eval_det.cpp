@@ -13,6 +13,12 @@
 
 #include "tests/cli/cli_test_support.h"
 #include "tests/common/test_support.h"
+#include "tests/detect/detector_fixture.h"
+
+using flexsight::testing_support::read_text;
+using flexsight::testing_support::tiny_ssd_dir;
+using flexsight::testing_support::tiny_ssd_image;
+using flexsight::testing_support::tiny_ssd_model;
 
 using namespace flexsight::cli_test_support;
 using Json = nlohmann::json;
@@ -254,7 +260,9 @@ TEST_F(EvalDetCli, RejectsMissingInputsAndBadOptions) {
   const std::string nope = (work_ / "nope").string();
   expect_rejected("eval-det " + nope + " --results " + results() + " --out " + out_.string(), nope);
   expect_rejected("eval-det --results " + results() + " --out " + out_.string(), "DATASET");
-  expect_rejected("eval-det " + data_.string() + " --out " + out_.string(), "--results");
+  const std::string no_model = (work_ / "no_model.onnx").string();
+  expect_rejected("eval-det " + data_.string() + " --model " + no_model + " --out " + out_.string(),
+                  no_model);
   expect_rejected("eval-det " + data_.string() + " --results " + results(), "--out");
   const std::string missing = (work_ / "missing.json").string();
   expect_rejected(command(missing), missing);
@@ -263,7 +271,15 @@ TEST_F(EvalDetCli, RejectsMissingInputsAndBadOptions) {
   }
   expect_rejected(command(results()) + " --montage -1", "--montage");
   expect_rejected(command(results()) + " --montage many", "--montage");
-  expect_rejected(command(results()) + " --model ssd.onnx", "--model");
+  expect_rejected(command(results()) + " --model ssd.onnx", "--model");  // both sources
+  for (const char* value : {"-0.1", "1.5", "nan"}) {
+    expect_rejected("eval-det " + data_.string() + " --model " + tiny_ssd_model() + " --score " + value +
+                        " --out " + out_.string(),
+                    "--score");
+  }
+  // The tiny model's categories (5, 7, 9) are not this data set's (1, 2).
+  expect_rejected("eval-det " + data_.string() + " --model " + tiny_ssd_model() + " --out " + out_.string(),
+                  "other parts");
   expect_rejected(command(results()) + " --colour red", "--colour");
   const std::string no_parent = (work_ / "a" / "b").string();
   expect_rejected("eval-det " + data_.string() + " --results " + results() + " --out " + no_parent, no_parent);
@@ -319,3 +335,45 @@ TEST_F(EvalDetCli, NonEmptyOutputFolderNeedsOverwrite) {
 }
 
 }  // namespace
+
+// --model runs the detector on every image. The data set is the tiny model's own picture
+// with, as ground truth, NumPy's detections of it (expected_detections.json, made apart
+// from the C++ code): the detector must find each of those boxes again, so that every
+// class with ground truth scores AP 1 under both metrics.
+TEST(EvalDetModel, RunsTheDetectorOnEveryImage) {
+  const fs::path dir = flexsight::testing_support::fresh_temp_dir("EvalDetModel");
+  const fs::path data = dir / "data";
+  fs::create_directories(data / "rgb");
+  fs::copy_file(tiny_ssd_image(), data / "rgb" / "000001.png");
+  const Json expected = Json::parse(read_text(tiny_ssd_dir() + "/expected_detections.json"));
+  const int categories[] = {5, 7, 9};
+  const int width = 317, height = 241;
+  Json annotations = Json::array();
+  for (const Json& d : expected["detections"]) {
+    const double x0 = d["box"][0].get<double>() * width, y0 = d["box"][1].get<double>() * height;
+    const double x1 = d["box"][2].get<double>() * width, y1 = d["box"][3].get<double>() * height;
+    annotations.push_back({{"id", annotations.size() + 1}, {"image_id", 1},
+                           {"category_id", categories[d["class_id"].get<int>()]},
+                           {"bbox", {x0, y0, x1 - x0, y1 - y0}}, {"area", (x1 - x0) * (y1 - y0)},
+                           {"segmentation", {{"size", {height, width}}, {"counts", {width * height}}}},
+                           {"iscrowd", 0}});
+  }
+  const Json coco = {
+      {"images", {{{"id", 1}, {"file_name", "rgb/000001.png"}, {"width", width}, {"height", height}}}},
+      {"annotations", annotations},
+      {"categories", {{{"id", 5}, {"name", "red_box"}}, {{"id", 7}, {"name", "green_box"}},
+                      {{"id", 9}, {"name", "blue_box"}}}}};
+  write_json(data / "coco_instances.json", coco);
+  const fs::path out = dir / "out";
+  const RunResult r = run_flexsight("eval-det " + data.string() + " --model " + tiny_ssd_model() +
+                                        " --score " + std::to_string(expected["score_threshold"].get<double>()) +
+                                        " --top-k 1024 --device reference --out " + out.string(),
+                                    dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json report = read_json(out / "report.json");
+  EXPECT_EQ(report["detections"].get<int>(), static_cast<int>(expected["detections"].size()));
+  EXPECT_NEAR(report["map50"].get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(report["map50_95"].get<double>(), 1.0, 1e-9);
+  EXPECT_TRUE(fs::exists(out / "montage.jpg"));
+  fs::remove_all(dir);
+}
