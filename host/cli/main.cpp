@@ -15,7 +15,7 @@ void print_usage() {
                "  stereo LEFT RIGHT -o DISP.pfm [options]   match a rectified pair\n"
                "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
                "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
-               "  eval-det DATASET --results DETS.json --out DIR  score detections (VOC, COCO AP)\n"
+               "  eval-det DATASET --out DIR [--model M.onnx]  score the detector (VOC, COCO AP)\n"
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
                "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
