@@ -205,7 +205,8 @@ def forward(model, inputs, args):
     if args.tune_from >= 0:
         if args.backbone_lr_factor == 0:  # the whole extractor frozen, run from a stem cache
             with torch.no_grad():
-                return model.detector(*model.backbone.tail(inputs[0], args.tune_from))
+                features = model.backbone.tail(inputs[0], args.tune_from)
+            return model.detector(*features)
         return model.detector(*model.backbone.tail(inputs[0], args.tune_from))
     return model.detector(*inputs)
 
