@@ -16,6 +16,8 @@
 
 namespace {
 
+namespace fs = std::filesystem;
+using namespace flexsight::cli_test_support;
 using Json = nlohmann::json;
 
 const std::string kModelDir = std::string(FLEXSIGHT_SOURCE_DIR) + "/models/tless-ssd";
