@@ -321,7 +321,12 @@ def main(argv=None) -> int:
     ap.add_argument("--val-fraction", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--threads", type=int, default=2, help="torch CPU threads")
-    ap.add_argument("--max-minutes", type=float, default=0, help="stop after this long (0: no limit)")
+    ap.add_argument("--max-minutes", type=float, default=0,
+                    help="stop after the epoch that passes this long (0: no limit); the number of"
+                         " epochs then depends on the machine: --stop-epoch repeats a run exactly")
+    ap.add_argument("--stop-epoch", type=int, default=0,
+                    help="stop after this epoch, the learning-rate schedule still that of --epochs"
+                         " (0: run them all)")
     ap.add_argument("--backbone", choices=("imagenet", "oidv4"), default="imagenet",
                     help="feature extractor weights: ImageNet MobileNetV2 (the paper) or the"
                          " OIDv4 detector's")
@@ -449,6 +454,9 @@ def main(argv=None) -> int:
         plot(log_rows, args.out / "loss.png")
         if args.max_minutes and time.time() - t_start > args.max_minutes * 60:
             print("stopping: --max-minutes %.1f reached" % args.max_minutes)
+            break
+        if args.stop_epoch and epoch >= args.stop_epoch:
+            print("stopping: --stop-epoch %d reached" % args.stop_epoch)
             break
 
     with open(args.out / "log.csv", "w", newline="") as fh:
