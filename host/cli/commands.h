@@ -13,5 +13,7 @@ int run_cloud_command(std::vector<std::string> args);
 int run_render_command(std::vector<std::string> args);
 int run_synth_command(std::vector<std::string> args);
 int run_detect_command(std::vector<std::string> args);
+int run_pose_templates_command(std::vector<std::string> args);
+int run_pose_command(std::vector<std::string> args);
 
 }  // namespace flexsight

@@ -20,6 +20,8 @@ void print_usage() {
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
                "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
                "  detect IMAGE... [-o DETS.json] [options]  find the parts in images (SSD detector)\n"
+               "  pose DATASET --gt-boxes --templates T --out DIR  6D poses of parts (D2CO + ICP)\n"
+               "  pose-templates CAD_DIR -o TEMPLATES       edge templates of the parts, for pose\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
@@ -42,6 +44,8 @@ int main(int argc, char** argv) {
     if (command == "render") return flexsight::run_render_command(args);
     if (command == "synth") return flexsight::run_synth_command(args);
     if (command == "detect") return flexsight::run_detect_command(args);
+    if (command == "pose") return flexsight::run_pose_command(args);
+    if (command == "pose-templates") return flexsight::run_pose_templates_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();
       return 0;

@@ -43,6 +43,9 @@ std::vector<SettingOption> full_synthetic_setting_options(FullSyntheticSettings&
       {"hflip", &s.horizontal_flip_probability, nullptr, "chance of a horizontal flip"},
       {"vflip", &s.vertical_flip_probability, nullptr, "chance of a vertical flip"},
       {"max-rotation", &s.max_rotation_degrees, nullptr, "largest in-plane rotation, degrees"},
+      {"depth-noise", &s.depth_noise.disparity_sigma, nullptr, "stored depth: disparity noise, pixels"},
+      {"depth-baseline", &s.depth_noise.baseline_mm, nullptr, "stored depth: stereo baseline, mm"},
+      {"depth-dropout", nullptr, &s.depth_noise.edge_dropout, "stored depth: no depth this near steps"},
   };
 }
 

@@ -170,7 +170,11 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
   AnnotatedImage image;
   image.im_id = image_index >= 0 && image_index <= INT_MAX ? static_cast<int>(image_index) : 0;
   image.rgb = rgb;
-  if (settings.store_depth) image.depth = images.depth;
+  if (settings.store_depth) {
+    image.depth = images.depth.clone();
+    apply_stereo_depth_noise(image.depth, camera.fx, settings.depth_noise,
+                             augmentation.noise_key ^ 0xD3E7B0A5ULL);
+  }
   image.camera.K << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0;
   image.flipped_horizontally = augmentation.flip_horizontal;
   image.flipped_vertically = augmentation.flip_vertical;

@@ -71,6 +71,7 @@ void FullSyntheticSettings::check() const {
   probability("hflip", horizontal_flip_probability);
   probability("vflip", vertical_flip_probability);
   in_range("max-rotation", max_rotation_degrees, 0.0, 180.0);
+  depth_noise.check();
 }
 
 }  // namespace flexsight

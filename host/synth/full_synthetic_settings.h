@@ -5,6 +5,7 @@
 // light type and position, Gaussian noise, flips and a slight in-plane rotation) but
 // not their ranges; where a default is ours, the comment says why.
 #include "host/render/raycaster.h"
+#include "host/synth/depth_noise.h"
 
 namespace flexsight {
 
@@ -106,6 +107,10 @@ struct FullSyntheticSettings {
   // masks take two full-size images per part, depth one float image.
   bool store_masks = true;
   bool store_depth = true;
+  // The stored depth as a stereo camera would measure it (host/synth/depth_noise.h:
+  // --depth-noise disparity sigma in pixels, --depth-baseline mm, --depth-dropout pixels
+  // at discontinuities); exact depth by default. Annotations use the exact depth.
+  StereoDepthNoise depth_noise;
 
   // The camera of every image of these settings (after check()).
   PinholeCamera camera() const;

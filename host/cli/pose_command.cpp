@@ -1,0 +1,179 @@
+// flexsight pose: the 6D pose of parts in boxes (host/pose/pose_estimator.h). Two
+// forms: one image with its depth and boxes, or every ground-truth box of a BOP data
+// set with its depth, scored at once (the benchmark of docs/pose.md).
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "host/cli/arguments.h"
+#include "host/cli/commands.h"
+#include "host/cli/pose_inputs.h"
+#include "host/cli/pose_outputs.h"
+#include "host/cli/progress_bar.h"
+#include "host/dataset/bop_pose_results.h"
+#include "host/dataset/bop_reader.h"
+#include "host/io/input_error.h"
+#include "host/io/staged_folder.h"
+
+namespace flexsight {
+namespace {
+
+namespace fs = std::filesystem;
+
+void print_help() {
+  std::cout
+      << "usage: flexsight pose DATASET --gt-boxes --templates T --out DIR [options]\n"
+         "       flexsight pose IMAGE --depth DEPTH.pfm --calib CALIB --boxes DETS.json\n"
+         "                          --templates T -o POSES.json [options]\n"
+         "  DATASET            a BOP scene or split folder with depth/: every ground-truth\n"
+         "                     box (bbox_visib) is posed, and the result scored\n"
+         "  --gt-boxes         pose the data set's ground-truth boxes (the only boxes a data\n"
+         "                     set form takes for now)\n"
+         "  --templates T      edge templates (flexsight pose-templates CAD_DIR -o T)\n"
+         "  --cad DIR          the CAD models the templates were made from (default: the\n"
+         "                     T-LESS folder of the detection data)\n"
+         "  --out DIR          data set form: poses.csv (BOP results), report.md,\n"
+         "                     report.json, poses.jpg (outlines at the estimated poses)\n"
+         "  --min-visib F      data set form: pose parts at least this visible (default 0.1,\n"
+         "                     BOP's)\n"
+         "  --limit N          data set form: the first N images only\n"
+         "  --refinement R     both (default), edges (D2CO alone: search + LM on edges) or\n"
+         "                     depth (ICP alone from the template's pose)\n"
+         "  --threads N        images posed at once (default: all cores)\n"
+         "  --overwrite        replace DIR when it is not empty\n";
+}
+
+PoseRefinement parse_refinement(const std::string& text) {
+  if (text.empty() || text == "both") return PoseRefinement::kBoth;
+  if (text == "edges") return PoseRefinement::kEdgesOnly;
+  if (text == "depth") return PoseRefinement::kDepthOnly;
+  throw InputError("option --refinement", "expected both, edges or depth, got '" + text + "'");
+}
+
+std::string default_cad_dir() {
+  const char* data = std::getenv("FLEXSIGHT_DETECTION_DATA");
+  return std::string(data != nullptr && *data != '\0' ? data : FLEXSIGHT_DEFAULT_DETECTION_DATA) + "/cad/tless";
+}
+
+PinholeCamera camera_of(const AnnotatedImage& image) {
+  PinholeCamera camera;
+  camera.fx = image.camera.K(0, 0);
+  camera.fy = image.camera.K(1, 1);
+  camera.cx = image.camera.K(0, 2);
+  camera.cy = image.camera.K(1, 2);
+  camera.width = image.rgb.cols;
+  camera.height = image.rgb.rows;
+  return camera;
+}
+
+bool to_pose(const PartAnnotation& part, double min_visib) {
+  return part.visib_fract >= min_visib && !part.bbox_visib.empty();
+}
+
+int run_dataset_form(const std::string& dataset, std::vector<std::string>& args) {
+  if (!take_flag(args, "--gt-boxes")) {
+    throw InputError("pose " + dataset, "a data set form needs --gt-boxes (pose its ground-truth boxes)");
+  }
+  const std::string templates = take_option(args, "--templates");
+  std::string cad = take_option(args, "--cad");
+  const std::string out = take_option(args, "--out");
+  const double min_visib = take_number_option(args, "--min-visib", 0.1);
+  const std::string limit_text = take_option(args, "--limit");
+  const std::string threads_text = take_option(args, "--threads");
+  PoseEstimatorParams params;
+  params.refinement = parse_refinement(take_option(args, "--refinement"));
+  const bool overwrite = take_flag(args, "--overwrite");
+  reject_unknown_options(args);
+  if (templates.empty()) throw InputError("option --templates", "missing (make them with flexsight pose-templates CAD_DIR -o FILE)");
+  if (out.empty()) throw InputError("option --out", "missing: the folder to write the poses and report to");
+  if (!(min_visib >= 0.0 && min_visib <= 1.0)) throw InputError("option --min-visib", "must be in [0, 1]");
+  const std::int64_t limit = limit_text.empty() ? -1 : parse_whole_number("--limit", limit_text, 1, 1000000000);
+  const int threads = threads_text.empty() ? omp_get_max_threads()
+                                           : static_cast<int>(parse_whole_number("--threads", threads_text, 1, 1024));
+  if (cad.empty()) cad = default_cad_dir();
+
+  const BopReader reader(dataset);
+  const PoseModels models(templates, cad);
+  const std::size_t image_count = limit < 0 ? reader.size() : std::min<std::size_t>(reader.size(), limit);
+  std::size_t boxes = 0;
+  for (std::size_t i = 0; i < image_count; ++i) {
+    for (const PartAnnotation& part : reader.record(i).parts) {
+      if (!to_pose(part, min_visib)) continue;
+      models.model(part.obj_id, reader.scene_dir(i) + "/scene_gt.json");
+      ++boxes;
+    }
+  }
+  if (boxes == 0) throw InputError(dataset, "has no ground-truth box at least " + std::to_string(min_visib) + " visible");
+  StagedFolder staged(out, overwrite, "--out");
+
+  std::vector<std::vector<PoseEstimateRecord>> per_image(image_count);
+  std::vector<std::vector<PoseStageTimes>> times(image_count);
+  ProgressBar progress(static_cast<std::int64_t>(boxes), "parts");
+  std::exception_ptr failure;
+#pragma omp parallel num_threads(threads)
+  {
+    PoseEstimator estimator(params);
+#pragma omp for schedule(dynamic)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(image_count); ++i) {
+      try {
+        const AnnotatedImage image = reader.load(i);
+        if (image.depth.empty()) throw InputError(reader.scene_dir(i), "has no depth/ image for image " + std::to_string(image.im_id));
+        cv::Mat bgr;
+        cv::cvtColor(image.rgb, bgr, cv::COLOR_RGB2BGR);
+        const PinholeCamera camera = camera_of(image);
+        const auto start = std::chrono::steady_clock::now();
+        for (const PartAnnotation& part : image.parts) {
+          if (!to_pose(part, min_visib)) continue;
+          const cv::Rect box(part.bbox_visib.x, part.bbox_visib.y, part.bbox_visib.width, part.bbox_visib.height);
+          const PoseEstimate estimate = estimator.estimate(models.model(part.obj_id, "data set"), bgr, image.depth, camera, box);
+          PoseEstimateRecord record;
+          record.scene_id = image.scene_id;
+          record.im_id = image.im_id;
+          record.obj_id = part.obj_id;
+          record.score = estimate.score;
+          record.R = estimate.pose.R;
+          record.t = estimate.pose.t;
+          per_image[i].push_back(record);
+          times[i].push_back(estimate.times);
+          progress.advance();
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        for (auto& record : per_image[i]) record.time_s = seconds;
+      } catch (...) {
+#pragma omp critical
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
+  progress.finish();
+  if (failure) std::rethrow_exception(failure);
+
+  std::vector<PoseEstimateRecord> records;
+  std::vector<PoseStageTimes> all_times;
+  for (std::size_t i = 0; i < image_count; ++i) {
+    records.insert(records.end(), per_image[i].begin(), per_image[i].end());
+    all_times.insert(all_times.end(), times[i].begin(), times[i].end());
+  }
+  write_pose_dataset_outputs(staged.path(), dataset, reader, image_count, records, all_times, models, min_visib);
+  staged.commit();
+  std::cout << "pose: " << records.size() << " parts in " << image_count << " images -> " << out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_pose_command(std::vector<std::string> args) {
+  if (auto code = usage_exit_code(args, print_help)) return *code;
+  if (args.empty() || args[0].rfind("-", 0) == 0) throw InputError("pose", "expected a data set folder or an image first");
+  const std::string input = args[0];
+  args.erase(args.begin());
+  if (fs::is_directory(input)) return run_dataset_form(input, args);
+  throw InputError("pose " + input, "the image form is not built yet");
+}
+
+}  // namespace flexsight

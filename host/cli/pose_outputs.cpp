@@ -1,0 +1,106 @@
+#include "host/cli/pose_outputs.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "host/pose/pose_drawing.h"
+
+namespace flexsight {
+namespace {
+
+constexpr int kPictureImages = 12;
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The first images with the ground truth's outlines (green) and the estimates' (orange),
+// tiled 4 wide at a third of their size... or full size when there are few.
+void write_picture(const std::string& path, const BopReader& reader, std::size_t image_count,
+                   const std::vector<PoseEstimateRecord>& records, const PoseModels& models, double min_visib) {
+  std::vector<cv::Mat> tiles;
+  for (std::size_t i = 0; i < std::min<std::size_t>(image_count, kPictureImages); ++i) {
+    const AnnotatedImage image = reader.load(i);
+    cv::Mat bgr;
+    cv::cvtColor(image.rgb, bgr, cv::COLOR_RGB2BGR);
+    PinholeCamera camera;
+    camera.fx = image.camera.K(0, 0);
+    camera.fy = image.camera.K(1, 1);
+    camera.cx = image.camera.K(0, 2);
+    camera.cy = image.camera.K(1, 2);
+    camera.width = bgr.cols;
+    camera.height = bgr.rows;
+    std::vector<PosedPart> parts;
+    for (const PartAnnotation& part : image.parts) {
+      if (part.visib_fract < min_visib || !models.has(part.obj_id)) continue;
+      Pose pose;
+      pose.R = part.cam_R_m2c;
+      pose.t = part.cam_t_m2c;
+      parts.push_back({models.model(part.obj_id, "").mesh, pose, cv::Scalar(80, 220, 80), ""});
+    }
+    for (const PoseEstimateRecord& record : records) {
+      if (record.scene_id != image.scene_id || record.im_id != image.im_id) continue;
+      Pose pose;
+      pose.R = record.R;
+      pose.t = record.t;
+      std::ostringstream label;
+      label << "obj " << record.obj_id << " " << std::fixed << std::setprecision(2) << record.score;
+      parts.push_back({models.model(record.obj_id, "").mesh, pose, cv::Scalar(0, 140, 255), label.str()});
+    }
+    draw_posed_parts(bgr, parts, camera);
+    tiles.push_back(bgr);
+  }
+  if (tiles.empty()) return;
+  const int columns = std::min<int>(4, static_cast<int>(tiles.size()));
+  const int rows = (static_cast<int>(tiles.size()) + columns - 1) / columns;
+  const cv::Size tile(tiles[0].cols / 2, tiles[0].rows / 2);
+  cv::Mat sheet(rows * tile.height, columns * tile.width, CV_8UC3, cv::Scalar(32, 32, 32));
+  for (std::size_t k = 0; k < tiles.size(); ++k) {
+    cv::Mat small;
+    cv::resize(tiles[k], small, tile, 0, 0, cv::INTER_AREA);
+    small.copyTo(sheet(cv::Rect(static_cast<int>(k % columns) * tile.width,
+                                static_cast<int>(k / columns) * tile.height, tile.width, tile.height)));
+  }
+  cv::imwrite(path, sheet, {cv::IMWRITE_JPEG_QUALITY, 90});
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, double>> median_stage_times(const std::vector<PoseStageTimes>& times) {
+  std::vector<double> edges, search, refine, icp, score, total;
+  for (const auto& t : times) {
+    edges.push_back(t.edges_ms);
+    search.push_back(t.search_ms);
+    refine.push_back(t.refine_ms);
+    icp.push_back(t.icp_ms);
+    score.push_back(t.score_ms);
+    total.push_back(t.total_ms());
+  }
+  return {{"edges", median(edges)}, {"search", median(search)}, {"refine", median(refine)},
+          {"icp", median(icp)},     {"score", median(score)},   {"total", median(total)}};
+}
+
+void write_pose_dataset_outputs(const std::string& folder, const std::string& dataset,
+                                const BopReader& reader, std::size_t image_count,
+                                const std::vector<PoseEstimateRecord>& records,
+                                const std::vector<PoseStageTimes>& times, const PoseModels& models,
+                                double min_visib) {
+  write_bop_pose_results(folder + "/poses.csv", records);
+  write_picture(folder + "/poses.jpg", reader, image_count, records, models, min_visib);
+  std::ofstream md(folder + "/report.md");
+  md << "# Poses of the ground-truth boxes of " << dataset << "\n\n"
+     << records.size() << " parts in " << image_count << " images.\n\n"
+     << "| stage | median ms per part |\n|---|---|\n";
+  for (const auto& [stage, ms] : median_stage_times(times)) md << "| " << stage << " | " << std::fixed << std::setprecision(1) << ms << " |\n";
+  std::cout << "median ms per part:";
+  for (const auto& [stage, ms] : median_stage_times(times)) std::cout << " " << stage << " " << std::fixed << std::setprecision(1) << ms;
+  std::cout << "\n";
+}
+
+}  // namespace flexsight
