@@ -8,6 +8,7 @@ namespace flexsight {
 int run_stereo_command(std::vector<std::string> args);
 int run_eval_command(std::vector<std::string> args);
 int run_eval_det_command(std::vector<std::string> args);
+int run_eval_pose_command(std::vector<std::string> args);
 int run_devices_command(std::vector<std::string> args);
 int run_cloud_command(std::vector<std::string> args);
 int run_render_command(std::vector<std::string> args);

@@ -16,6 +16,7 @@ void print_usage() {
                "  stereo SCENE_FOLDER -o DISP.pfm [options] match a MiddEval3 scene (ndisp from calib.txt)\n"
                "  eval DATASET_ROOT [options]               score the matcher on a benchmark folder\n"
                "  eval-det DATASET --out DIR [--model M.onnx]  score the detector (VOC, COCO AP)\n"
+               "  eval-pose DATASET --results POSES.csv --out DIR  score 6D poses (BOP: ADD(-S), AR)\n"
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
                "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     if (command == "stereo") return flexsight::run_stereo_command(args);
     if (command == "eval") return flexsight::run_eval_command(args);
     if (command == "eval-det") return flexsight::run_eval_det_command(args);
+    if (command == "eval-pose") return flexsight::run_eval_pose_command(args);
     if (command == "cloud") return flexsight::run_cloud_command(args);
     if (command == "devices") return flexsight::run_devices_command(args);
     if (command == "render") return flexsight::run_render_command(args);
