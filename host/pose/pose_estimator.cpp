@@ -1,5 +1,6 @@
 #include "host/pose/pose_estimator.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -224,6 +225,24 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
   std::stable_sort(refined.begin(), refined.end(),
                    [](const Refined& a, const Refined& b) { return a.edge_cost < b.edge_cost; });
   if (static_cast<int>(refined.size()) > params.scored_candidates) refined.resize(params.scored_candidates);
+
+  // Half turns of each candidate about the model's axes join them: edges and a depth
+  // surface seen from one side often fit a part and its turned twin about equally, and
+  // only the complete fit (ICP, then the score) tells them apart.
+  if (params.try_half_turns && params.refinement != PoseRefinement::kEdgesOnly) {
+    const std::size_t count = refined.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        Refined turned = refined[i];
+        const Eigen::Vector3d centre = model.mesh->bounds.center().cast<double>();
+        const Eigen::Matrix3d half = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+        // Turn about the axis through the box centre, which stays where it was.
+        turned.pose.R = refined[i].pose.R * half;
+        turned.pose.t = refined[i].pose.t + refined[i].pose.R * (centre - half * centre);
+        refined.push_back(turned);
+      }
+    }
+  }
 
   bool first = true;
   for (const Refined& r : refined) {
