@@ -12,6 +12,7 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
+#include "host/cli/pose_image_form.h"
 #include "host/cli/pose_inputs.h"
 #include "host/cli/pose_outputs.h"
 #include "host/cli/progress_bar.h"
@@ -29,7 +30,12 @@ void print_help() {
   std::cout
       << "usage: flexsight pose DATASET --gt-boxes --templates T --out DIR [options]\n"
          "       flexsight pose IMAGE --depth DEPTH.pfm --calib CALIB --boxes DETS.json\n"
-         "                          --templates T -o POSES.json [options]\n"
+         "                          --templates T -o POSES.json [--csv POSES.csv] [--png P.png]\n"
+         "  IMAGE              an image (PNG, JPEG); --depth DEPTH.pfm in mm, or --disparity\n"
+         "                     D.pfm with --calib (Middlebury, KITTI or OpenCV stereo\n"
+         "                     calibration, which also gives the camera); --boxes: COCO\n"
+         "                     detections (flexsight detect -o), category_id = object id,\n"
+         "                     those scoring at least --score (default 0.3) are posed\n"
          "  DATASET            a BOP scene or split folder with depth/: every ground-truth\n"
          "                     box (bbox_visib) is posed, and the result scored\n"
          "  --gt-boxes         pose the data set's ground-truth boxes (the only boxes a data\n"
@@ -173,7 +179,10 @@ int run_pose_command(std::vector<std::string> args) {
   const std::string input = args[0];
   args.erase(args.begin());
   if (fs::is_directory(input)) return run_dataset_form(input, args);
-  throw InputError("pose " + input, "the image form is not built yet");
+  std::string cad = take_option(args, "--cad");
+  PoseEstimatorParams params;
+  params.refinement = parse_refinement(take_option(args, "--refinement"));
+  return run_pose_image_form(input, args, cad.empty() ? default_cad_dir() : cad, params);
 }
 
 }  // namespace flexsight

@@ -8,8 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "host/dataset/bop_pose_results.h"
+#include "host/dataset/bop_reader.h"
+#include "host/io/pfm.h"
 #include "host/io/input_error.h"
 #include "host/pose/template_file.h"
 #include "tests/cli/cli_test_support.h"
@@ -134,6 +138,73 @@ TEST_F(PoseCli, BadInputIsAnErrorAndWritesNothing) {
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.arguments << "\n" << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.arguments;
     EXPECT_FALSE(fs::exists(dir_ / "t.tpl")) << c.arguments;
+  }
+}
+
+// The image form on one image of the data set: its depth as a PFM, a Middlebury calib.txt
+// with its camera, its ground-truth box as a COCO detection. Then the bad inputs the
+// issue names: depth of another size, a box outside the image, an empty box, an unknown
+// object id.
+TEST_F(PoseCli, ImageFormPosesTheBoxesOfOneImage) {
+  const BopReader reader((root_ / "data").string());
+  const AnnotatedImage image = reader.load(0);
+  const std::string rgb = (dir_ / "image.png").string();
+  cv::Mat bgr;
+  cv::cvtColor(image.rgb, bgr, cv::COLOR_RGB2BGR);
+  cv::imwrite(rgb, bgr);
+  const std::string depth = (dir_ / "depth.pfm").string();
+  write_pfm(depth, image.depth);
+  const std::string small_depth = (dir_ / "small.pfm").string();
+  write_pfm(small_depth, image.depth(cv::Rect(0, 0, 100, 80)).clone());
+  const std::string calib = (dir_ / "calib.txt").string();
+  {
+    const auto& K = image.camera.K;
+    std::ofstream out(calib);
+    out << "cam0=[" << K(0, 0) << " 0 " << K(0, 2) << "; 0 " << K(1, 1) << " " << K(1, 2) << "; 0 0 1]\n"
+        << "cam1=[" << K(0, 0) << " 0 " << K(0, 2) << "; 0 " << K(1, 1) << " " << K(1, 2) << "; 0 0 1]\n"
+        << "doffs=0\nbaseline=100\nwidth=" << image.rgb.cols << "\nheight=" << image.rgb.rows << "\nndisp=64\n";
+  }
+  const BopBox& b = image.parts.at(0).bbox_visib;
+  auto boxes = [&](const std::string& name, int obj_id, int x, int y, int w, int h) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << "[{\"image_id\": 1, \"category_id\": " << obj_id << ", \"bbox\": [" << x << ", " << y
+                        << ", " << w << ", " << h << "], \"score\": 0.9}]";
+    return path;
+  };
+  const std::string good = boxes("boxes.json", image.parts[0].obj_id, b.x, b.y, b.width, b.height);
+  const std::string common = " --calib " + calib + " --templates " + (root_ / "parts.tpl").string() + " --cad " +
+                             (root_ / "cad").string();
+  const fs::path out = dir_ / "poses.json", csv = dir_ / "poses.csv", png = dir_ / "poses.png";
+  RunResult r = run_flexsight("pose " + rgb + " --depth " + depth + " --boxes " + good + common + " -o " +
+                                  out.string() + " --csv " + csv.string() + " --png " + png.string(),
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out);
+  const auto poses = nlohmann::json::parse(in);
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_EQ(poses[0]["obj_id"].get<int>(), image.parts[0].obj_id);
+  // The translation is the one thing every right or symmetric-twin pose shares.
+  const Eigen::Vector3d t(poses[0]["t_mm"][0].get<double>(), poses[0]["t_mm"][1].get<double>(),
+                          poses[0]["t_mm"][2].get<double>());
+  EXPECT_LT((t - image.parts[0].cam_t_m2c).norm(), 10.0) << t.transpose();
+  EXPECT_EQ(read_bop_pose_results(csv.string()).size(), 1u);
+  EXPECT_FALSE(cv::imread(png.string()).empty());
+
+  const struct {
+    std::string arguments, expected;
+  } cases[] = {
+      {"pose " + rgb + " --depth " + small_depth + " --boxes " + good + common, "small.pfm"},
+      {"pose " + rgb + " --depth " + depth + " --boxes " + boxes("outside.json", image.parts[0].obj_id, 300, 200, 50, 50) + common, "not inside"},
+      {"pose " + rgb + " --depth " + depth + " --boxes " + boxes("empty.json", image.parts[0].obj_id, 10, 10, 0, 5) + common, "empty"},
+      {"pose " + rgb + " --depth " + depth + " --boxes " + boxes("unknown.json", 7, b.x, b.y, b.width, b.height) + common, "object 7"},
+      {"pose " + rgb + " --boxes " + good + common, "--depth"},
+  };
+  fs::remove(out);
+  for (const auto& c : cases) {
+    r = run_flexsight(c.arguments + " -o " + out.string(), dir_);
+    EXPECT_EQ(r.exit_code, 1) << c.arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.arguments;
   }
 }
 

@@ -1,0 +1,182 @@
+// flexsight pose IMAGE ...: the parts in one image, each in its box (a detections
+// file), with the image's depth (a depth PFM in mm, or a disparity PFM and the stereo
+// calibration). Everything is read and checked before the first pose.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "host/cli/arguments.h"
+#include "host/cli/pose_image_form.h"
+#include "host/cli/pose_inputs.h"
+#include "host/dataset/bop_pose_results.h"
+#include "host/dataset/dataset_files.h"
+#include "host/geometry/stereo_camera.h"
+#include "host/io/atomic_file.h"
+#include "host/io/image_io.h"
+#include "host/io/input_error.h"
+#include "host/io/pfm.h"
+#include "host/pose/pose_drawing.h"
+
+namespace flexsight {
+namespace {
+
+using dataset_files::Json;
+using dataset_files::read_json;
+
+struct BoxInput {
+  int obj_id = 0;
+  double score = 0.0;
+  cv::Rect box;
+};
+
+// COCO detection results (flexsight detect's output): category_id is the object id.
+std::vector<BoxInput> read_boxes(const std::string& path, double min_score, const cv::Size& image,
+                                 const PoseModels& models) {
+  const Json json = read_json(path);
+  if (!json.is_array()) throw InputError(path, "expected a JSON list of detections {category_id, bbox, score}");
+  std::vector<BoxInput> boxes;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const Json& d = json[i];
+    const std::string where = path + ": detection " + std::to_string(i);
+    if (!d.is_object() || !d.contains("category_id") || !d.contains("bbox") || !d["bbox"].is_array() ||
+        d["bbox"].size() != 4 || !d["category_id"].is_number_integer()) {
+      throw InputError(where, "needs an integer category_id and a bbox [x, y, width, height]");
+    }
+    BoxInput b;
+    b.obj_id = d["category_id"].get<int>();
+    b.score = d.contains("score") && d["score"].is_number() ? d["score"].get<double>() : 1.0;
+    if (b.score < min_score) continue;
+    double v[4];
+    for (int k = 0; k < 4; ++k) {
+      if (!d["bbox"][k].is_number() || !std::isfinite(d["bbox"][k].get<double>())) throw InputError(where, "bbox holds a value that is not a number");
+      v[k] = d["bbox"][k].get<double>();
+    }
+    b.box = cv::Rect(static_cast<int>(std::floor(v[0])), static_cast<int>(std::floor(v[1])),
+                     static_cast<int>(std::ceil(v[0] + v[2]) - std::floor(v[0])),
+                     static_cast<int>(std::ceil(v[1] + v[3]) - std::floor(v[1])));
+    if (!(v[2] > 0.0 && v[3] > 0.0)) throw InputError(where, "the box is empty");
+    if ((b.box & cv::Rect(cv::Point(), image)) != b.box) {
+      throw InputError(where, "the box is not inside the " + std::to_string(image.width) + " x " +
+                                  std::to_string(image.height) + " image");
+    }
+    models.model(b.obj_id, where);
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+}  // namespace
+
+int run_pose_image_form(const std::string& image_path, std::vector<std::string>& args,
+                        const std::string& cad_dir, const PoseEstimatorParams& params) {
+  const std::string depth_path = take_option(args, "--depth");
+  const std::string disparity_path = take_option(args, "--disparity");
+  const std::string calib_path = take_option(args, "--calib");
+  const std::string boxes_path = take_option(args, "--boxes");
+  const std::string templates = take_option(args, "--templates");
+  const std::string output = take_option(args, "-o");
+  const std::string csv = take_option(args, "--csv");
+  const std::string png = take_option(args, "--png");
+  const double min_score = take_number_option(args, "--score", 0.3);
+  reject_unknown_options(args);
+  if (!args.empty()) throw InputError("pose", "unexpected argument '" + args[0] + "'");
+  if (templates.empty()) throw InputError("option --templates", "missing (make them with flexsight pose-templates CAD_DIR -o FILE)");
+  if (calib_path.empty()) throw InputError("option --calib", "missing: the camera (Middlebury, KITTI or OpenCV stereo calibration)");
+  if (boxes_path.empty()) throw InputError("option --boxes", "missing: the detections (flexsight detect -o DETS.json)");
+  if (depth_path.empty() == disparity_path.empty()) throw InputError("option --depth / --disparity", "give exactly one");
+  if (output.empty()) throw InputError("option -o", "missing: the poses JSON to write");
+  if (!(min_score >= 0.0 && min_score <= 1.0)) throw InputError("option --score", "must be in [0, 1]");
+
+  const cv::Mat rgb = load_rgb8(image_path);
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  const StereoCamera rig = read_stereo_camera(calib_path);
+  if (rig.width > 0 && (rig.width != bgr.cols || rig.height != bgr.rows)) {
+    throw InputError(calib_path, "is for " + std::to_string(rig.width) + " x " + std::to_string(rig.height) +
+                                     " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
+                                     std::to_string(bgr.rows));
+  }
+  PinholeCamera camera;
+  camera.fx = camera.fy = rig.Q(2, 3);
+  camera.cx = -rig.Q(0, 3);
+  camera.cy = -rig.Q(1, 3);
+  camera.width = bgr.cols;
+  camera.height = bgr.rows;
+  const double to_mm = rig.metres_per_unit * 1000.0;
+  const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
+  const cv::Mat input = read_pfm(depth_source);
+  if (input.size() != bgr.size()) {
+    throw InputError(depth_source, "is " + std::to_string(input.cols) + " x " + std::to_string(input.rows) +
+                                       ", the image " + std::to_string(bgr.cols) + " x " + std::to_string(bgr.rows));
+  }
+  cv::Mat depth(bgr.size(), CV_32FC1, cv::Scalar(0));
+  for (int y = 0; y < depth.rows; ++y) {
+    for (int x = 0; x < depth.cols; ++x) {
+      const float v = input.at<float>(y, x);
+      if (!std::isfinite(v) || v <= 0.0f) continue;
+      const double z = depth_path.empty() ? rig.depth(v) * to_mm : v;
+      if (std::isfinite(z) && z > 0.0) depth.at<float>(y, x) = static_cast<float>(z);
+    }
+  }
+  const PoseModels models(templates, cad_dir);
+  const std::vector<BoxInput> boxes = read_boxes(boxes_path, min_score, bgr.size(), models);
+
+  PoseEstimator estimator(params);
+  std::vector<PoseEstimateRecord> records;
+  std::vector<PosedPart> drawn;
+  dataset_files::Json poses = dataset_files::Json::array();
+  for (const BoxInput& b : boxes) {
+    const PoseModel& model = models.model(b.obj_id, boxes_path);
+    const PoseEstimate e = estimator.estimate(model, bgr, depth, camera, b.box);
+    PoseEstimateRecord r;
+    r.obj_id = b.obj_id;
+    r.score = e.score;
+    r.R = e.pose.R;
+    r.t = e.pose.t;
+    r.time_s = e.times.total_ms() / 1000.0;
+    records.push_back(r);
+    dataset_files::Json R = dataset_files::Json::array(), t = dataset_files::Json::array();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) R.push_back(e.pose.R(i, j));
+      t.push_back(e.pose.t(i));
+    }
+    poses.push_back({{"obj_id", b.obj_id},
+                     {"score", e.score},
+                     {"detection_score", b.score},
+                     {"box", {b.box.x, b.box.y, b.box.width, b.box.height}},
+                     {"R", R},
+                     {"t_mm", t},
+                     {"edge_cost_px", e.edge_cost},
+                     {"depth_fit", e.depth_fit},
+                     {"ms", {{"edges", e.times.edges_ms}, {"search", e.times.search_ms}, {"refine", e.times.refine_ms},
+                             {"icp", e.times.icp_ms}, {"score", e.times.score_ms}}}});
+    std::ostringstream label;
+    label << "obj " << b.obj_id << " " << std::fixed << std::setprecision(2) << e.score;
+    drawn.push_back({model.mesh, e.pose, cv::Scalar(0, 140, 255), label.str()});
+    std::cout << "obj " << b.obj_id << ": score " << std::fixed << std::setprecision(3) << e.score << ", t = ("
+              << std::setprecision(1) << e.pose.t.x() << ", " << e.pose.t.y() << ", " << e.pose.t.z() << ") mm, "
+              << e.times.total_ms() << " ms\n";
+  }
+  write_atomically(output, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << poses.dump(1) << "\n";
+    if (!out) throw InputError(output, "cannot be written");
+  });
+  if (!csv.empty()) write_bop_pose_results(csv, records);
+  if (!png.empty()) {
+    draw_posed_parts(bgr, drawn, camera);
+    write_atomically(png, [&](const std::string& tmp) {
+      if (!cv::imwrite(tmp + ".png", bgr)) throw InputError(png, "cannot be written");
+      std::filesystem::rename(tmp + ".png", tmp);
+    });
+  }
+  std::cout << "pose: " << records.size() << " parts -> " << output << "\n";
+  return 0;
+}
+
+}  // namespace flexsight
