@@ -48,16 +48,16 @@ void print_help() {
          "  --min-visib F      data set form: pose parts at least this visible (default 0.1,\n"
          "                     BOP's)\n"
          "  --limit N          data set form: the first N images only\n"
-         "  --refinement R     both (default), edges (D2CO alone: search + LM on edges) or\n"
-         "                     depth (ICP alone from the template's pose)\n"
+         "  --refinement R     depth (default: ICP from the template's pose), edges (D2CO\n"
+         "                     alone: search + LM on edges) or both (LM, then ICP)\n"
          "  --threads N        images posed at once (default: all cores)\n"
          "  --overwrite        replace DIR when it is not empty\n";
 }
 
 PoseRefinement parse_refinement(const std::string& text) {
-  if (text.empty() || text == "both") return PoseRefinement::kBoth;
+  if (text.empty() || text == "depth") return PoseRefinement::kDepthOnly;
+  if (text == "both") return PoseRefinement::kBoth;
   if (text == "edges") return PoseRefinement::kEdgesOnly;
-  if (text == "depth") return PoseRefinement::kDepthOnly;
   throw InputError("option --refinement", "expected both, edges or depth, got '" + text + "'");
 }
 

@@ -18,8 +18,11 @@
 
 namespace flexsight {
 
-// Which refinements run after the search: both (the product), or one of them alone, for
-// the comparison the report makes.
+// Which refinements run after the search. The default is ICP alone from the template's
+// pose: on the tuning sets (seeds 11, 12) it posed 28/30 isolated and 55/62 cluttered
+// parts within ADD(-S) 0.1 d, against 27/30 and 48/62 with the edge LM first (the LM
+// settles some candidates in neighbouring edge minima that ICP then cannot leave);
+// docs/pose.md.
 enum class PoseRefinement { kBoth, kEdgesOnly, kDepthOnly };
 
 struct PoseEstimatorParams {
@@ -27,7 +30,7 @@ struct PoseEstimatorParams {
   SearchParams search;
   DcdRefineParams refine;
   IcpParams icp;
-  PoseRefinement refinement = PoseRefinement::kBoth;
+  PoseRefinement refinement = PoseRefinement::kDepthOnly;
   double box_margin = 0.25;      // the tensor covers the box grown by this much per side
   int scored_candidates = 3;     // the best candidates after the edge refinement that
                                  // are fitted to the depth and scored
