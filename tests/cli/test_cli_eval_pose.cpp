@@ -4,6 +4,7 @@
 // of the targets shifted scores 0.5; and bad input is a clear error naming the file or
 // option, exit code 1, with the work folder exactly as it was.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -44,8 +45,10 @@ Json read_json(const fs::path& path) {
 class EvalPoseCli : public ::testing::Test {
  protected:
   // One data set for the suite: 6 images of 160x120 with up to 4 parts each.
+  // ctest runs each test in its own process, several at once: each process makes its
+  // own data folder (the pid in its name), so one never removes another's.
   static void SetUpTestSuite() {
-    root_ = fresh_temp_dir("EvalPoseCli_data");
+    root_ = fresh_temp_dir("EvalPoseCli_data_" + std::to_string(::getpid()));
     const RunResult r = run_flexsight(std::string("synth full --count 6 --size 160x120 --max-parts 4 --seed 3") +
                                           " --cad " + FLEXSIGHT_TLESS_CAD_DIR + " --backgrounds " +
                                           FLEXSIGHT_BACKGROUNDS_DIR +

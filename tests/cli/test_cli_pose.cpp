@@ -4,6 +4,7 @@
 // eval-pose`, are mostly right; and bad input is a clear error, exit code 1, nothing
 // written.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -25,8 +26,10 @@ namespace {
 
 class PoseCli : public ::testing::Test {
  protected:
+  // ctest runs each test in its own process, several at once: each process makes its
+  // own data folder (the pid in its name), so one never removes another's.
   static void SetUpTestSuite() {
-    root_ = fresh_temp_dir("PoseCli_data");
+    root_ = fresh_temp_dir("PoseCli_data_" + std::to_string(::getpid()));
     // Two parts: obj_05 (symmetric by a half turn) and obj_21 (no symmetry).
     fs::create_directories(root_ / "cad");
     for (const char* name : {"obj_05.stl", "obj_21.stl"}) {
