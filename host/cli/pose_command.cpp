@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -15,6 +16,7 @@
 #include "host/cli/pose_image_form.h"
 #include "host/cli/pose_inputs.h"
 #include "host/cli/pose_outputs.h"
+#include "host/cli/pose_scoring.h"
 #include "host/cli/progress_bar.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/bop_reader.h"
@@ -46,8 +48,11 @@ void print_help() {
          "  --out DIR          data set form: poses.csv (BOP results), report.md,\n"
          "                     report.json, poses.jpg (outlines at the estimated poses)\n"
          "  --min-visib F      data set form: pose parts at least this visible (default 0.1,\n"
-         "                     BOP's)\n"
-         "  --limit N          data set form: the first N images only\n"
+         "                     BOP's); the same parts are the scoring's targets\n"
+         "  --models-info FILE data set form: diameters and symmetries for the scoring\n"
+         "                     (default: DIR_OF_CAD/models_info.json when present, else the\n"
+         "                     repository's T-LESS table)\n"
+         "  --limit N          data set form: the first N images only (posed and scored)\n"
          "  --refinement R     depth (default: ICP from the template's pose), edges (D2CO\n"
          "                     alone: search + LM on edges) or both (LM, then ICP)\n"
          "  --threads N        images posed at once (default: all cores)\n"
@@ -66,17 +71,6 @@ std::string default_cad_dir() {
   return std::string(data != nullptr && *data != '\0' ? data : FLEXSIGHT_DEFAULT_DETECTION_DATA) + "/cad/tless";
 }
 
-PinholeCamera camera_of(const AnnotatedImage& image) {
-  PinholeCamera camera;
-  camera.fx = image.camera.K(0, 0);
-  camera.fy = image.camera.K(1, 1);
-  camera.cx = image.camera.K(0, 2);
-  camera.cy = image.camera.K(1, 2);
-  camera.width = image.rgb.cols;
-  camera.height = image.rgb.rows;
-  return camera;
-}
-
 bool to_pose(const PartAnnotation& part, double min_visib) {
   return part.visib_fract >= min_visib && !part.bbox_visib.empty();
 }
@@ -91,6 +85,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const double min_visib = take_number_option(args, "--min-visib", 0.1);
   const std::string limit_text = take_option(args, "--limit");
   const std::string threads_text = take_option(args, "--threads");
+  std::string models_info = take_option(args, "--models-info");
   PoseEstimatorParams params;
   params.refinement = parse_refinement(take_option(args, "--refinement"));
   const bool overwrite = take_flag(args, "--overwrite");
@@ -102,6 +97,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const int threads = threads_text.empty() ? omp_get_max_threads()
                                            : static_cast<int>(parse_whole_number("--threads", threads_text, 1, 1024));
   if (cad.empty()) cad = default_cad_dir();
+  if (models_info.empty()) models_info = default_models_info_beside(cad);
 
   const BopReader reader(dataset);
   const PoseModels models(templates, cad);
@@ -115,12 +111,20 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
     }
   }
   if (boxes == 0) throw InputError(dataset, "has no ground-truth box at least " + std::to_string(min_visib) + " visible");
+  // The scoring's inputs (every ground-truth part's mesh and models_info entry) are
+  // checked before any part is posed.
+  std::set<int> truth_ids;
+  for (std::size_t i = 0; i < image_count; ++i) {
+    for (const PartAnnotation& part : reader.record(i).parts) truth_ids.insert(part.obj_id);
+  }
+  const PoseScoringModels scoring_models = load_pose_scoring_models(truth_ids, cad, models_info, {});
   StagedFolder staged(out, overwrite, "--out");
 
   std::vector<std::vector<PoseEstimateRecord>> per_image(image_count);
   std::vector<std::vector<PoseStageTimes>> times(image_count);
   ProgressBar progress(static_cast<std::int64_t>(boxes), "parts");
   std::exception_ptr failure;
+  const auto posing_start = std::chrono::steady_clock::now();
 #pragma omp parallel num_threads(threads)
   {
     PoseEstimator estimator(params);
@@ -158,6 +162,9 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   }
   progress.finish();
   if (failure) std::rethrow_exception(failure);
+  PoseRunTiming timing;
+  timing.threads = threads;
+  timing.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - posing_start).count();
 
   std::vector<PoseEstimateRecord> records;
   std::vector<PoseStageTimes> all_times;
@@ -165,9 +172,21 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
     records.insert(records.end(), per_image[i].begin(), per_image[i].end());
     all_times.insert(all_times.end(), times[i].begin(), times[i].end());
   }
-  write_pose_dataset_outputs(staged.path(), dataset, reader, image_count, records, all_times, models, min_visib);
+  timing.stages = all_times;
+  PoseScoringInput scoring;
+  scoring.reader = &reader;
+  scoring.dataset = dataset;
+  scoring.image_count = image_count;
+  scoring.records = records;
+  scoring.records_path = out + "/poses.csv";
+  scoring.cad = cad;
+  scoring.models_info = models_info;
+  scoring.min_visib = min_visib;
+  const PoseReport report = score_pose_estimates(scoring, scoring_models);
+  write_pose_dataset_outputs(staged.path(), reader, image_count, records, timing, report, models);
   staged.commit();
-  std::cout << "pose: " << records.size() << " parts in " << image_count << " images -> " << out << "\n";
+  std::cout << "pose: " << records.size() << " parts in " << image_count << " images: ADD(-S) recall "
+            << report.total.add_recall() << ", AR " << report.total.ar() << " -> " << out << "\n";
   return 0;
 }
 

@@ -5,6 +5,17 @@
 
 namespace flexsight {
 
+PinholeCamera camera_of(const AnnotatedImage& image) {
+  PinholeCamera camera;
+  camera.fx = image.camera.K(0, 0);
+  camera.fy = image.camera.K(1, 1);
+  camera.cx = image.camera.K(0, 2);
+  camera.cy = image.camera.K(1, 2);
+  camera.width = image.rgb.cols;
+  camera.height = image.rgb.rows;
+  return camera;
+}
+
 PoseModels::PoseModels(const std::string& templates_path, const std::string& cad_dir)
     : templates_(read_template_set(templates_path)), templates_path_(templates_path), cad_dir_(cad_dir) {
   const PartLibrary library = PartLibrary::load_folder(cad_dir);

@@ -6,11 +6,15 @@
 #include <memory>
 #include <string>
 
+#include "host/dataset/bop_reader.h"
 #include "host/pose/edge_template.h"
 #include "host/pose/pose_estimator.h"
 #include "host/synth/part_library.h"
 
 namespace flexsight {
+
+// The pinhole camera of a BOP image (its K and size).
+PinholeCamera camera_of(const AnnotatedImage& image);
 
 class PoseModels {
  public:

@@ -4,9 +4,12 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <opencv2/imgproc.hpp>
 
+#include "host/dataset/dataset_files.h"
 #include "host/pose/pose_drawing.h"
 
 namespace flexsight {
@@ -29,13 +32,7 @@ void write_picture(const std::string& path, const BopReader& reader, std::size_t
     const AnnotatedImage image = reader.load(i);
     cv::Mat bgr;
     cv::cvtColor(image.rgb, bgr, cv::COLOR_RGB2BGR);
-    PinholeCamera camera;
-    camera.fx = image.camera.K(0, 0);
-    camera.fy = image.camera.K(1, 1);
-    camera.cx = image.camera.K(0, 2);
-    camera.cy = image.camera.K(1, 2);
-    camera.width = bgr.cols;
-    camera.height = bgr.rows;
+    const PinholeCamera camera = camera_of(image);
     std::vector<PosedPart> parts;
     for (const PartAnnotation& part : image.parts) {
       if (part.visib_fract < min_visib || !models.has(part.obj_id)) continue;
@@ -86,21 +83,35 @@ std::vector<std::pair<std::string, double>> median_stage_times(const std::vector
           {"icp", median(icp)},     {"score", median(score)},   {"total", median(total)}};
 }
 
-void write_pose_dataset_outputs(const std::string& folder, const std::string& dataset,
-                                const BopReader& reader, std::size_t image_count,
-                                const std::vector<PoseEstimateRecord>& records,
-                                const std::vector<PoseStageTimes>& times, const PoseModels& models,
-                                double min_visib) {
+void write_pose_dataset_outputs(const std::string& folder, const BopReader& reader, std::size_t image_count,
+                                const std::vector<PoseEstimateRecord>& records, const PoseRunTiming& timing,
+                                const PoseReport& report, const PoseModels& models) {
   write_bop_pose_results(folder + "/poses.csv", records);
-  write_picture(folder + "/poses.jpg", reader, image_count, records, models, min_visib);
-  std::ofstream md(folder + "/report.md");
-  md << "# Poses of the ground-truth boxes of " << dataset << "\n\n"
-     << records.size() << " parts in " << image_count << " images.\n\n"
-     << "| stage | median ms per part |\n|---|---|\n";
-  for (const auto& [stage, ms] : median_stage_times(times)) md << "| " << stage << " | " << std::fixed << std::setprecision(1) << ms << " |\n";
+  write_picture(folder + "/poses.jpg", reader, image_count, records, models, report.settings.min_visib_fract);
+  const auto stages = median_stage_times(timing.stages);
+  const double wall_ms_per_part = records.empty() ? 0.0 : 1000.0 * timing.wall_s / records.size();
+
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(to_json(report));
+  nlohmann::ordered_json times = nlohmann::ordered_json::object();
+  for (const auto& [stage, ms] : stages) times[stage] = ms;
+  json["median_ms_per_part"] = times;
+  json["parts_posed"] = records.size();
+  json["threads"] = timing.threads;
+  json["wall_ms_per_part"] = wall_ms_per_part;
+  dataset_files::write_text(folder + "/report.json", json.dump(2) + "\n");
+
+  std::ostringstream md;
+  md << "# Poses of the ground-truth boxes of " << report.dataset << "\n\n"
+     << records.size() << " parts in " << image_count << " images, " << timing.threads
+     << " at once: " << std::fixed << std::setprecision(1) << wall_ms_per_part
+     << " ms per part (wall time / parts).\n\n"
+     << "| stage | median ms per part (one thread each) |\n|---|---|\n";
+  for (const auto& [stage, ms] : stages) md << "| " << stage << " | " << ms << " |\n";
+  md << "\n" << to_markdown(report);
+  dataset_files::write_text(folder + "/report.md", md.str());
   std::cout << "median ms per part:";
-  for (const auto& [stage, ms] : median_stage_times(times)) std::cout << " " << stage << " " << std::fixed << std::setprecision(1) << ms;
-  std::cout << "\n";
+  for (const auto& [stage, ms] : stages) std::cout << " " << stage << " " << std::fixed << std::setprecision(1) << ms;
+  std::cout << "; " << wall_ms_per_part << " ms per part with " << timing.threads << " threads\n";
 }
 
 }  // namespace flexsight

@@ -10,32 +10,62 @@
 namespace flexsight {
 namespace {
 
+// A view projected with its origin on the optical axis at one depth, in normalised
+// image coordinates (x / z, y / z): a turn about the optical axis turns these exactly,
+// so each in-plane rotation of the view is a 2D rotation of one projection.
+struct ProjectedView {
+  std::vector<Eigen::Vector2d> normalised;  // every point of the view
+  std::vector<double> angles;               // edge direction of the first coarse points,
+                                            // radians in normalised coordinates
+  std::vector<Eigen::Vector2d> directions;  // the same directions as unit vectors
+};
+
+ProjectedView project_view(const EdgeView& view, double depth, int coarse_points) {
+  ProjectedView out;
+  const int n = static_cast<int>(view.points.size());
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = view.rotation * view.points[i].cast<double>();
+    const double z = p.z() + depth;
+    if (z <= 1e-6) continue;
+    out.normalised.emplace_back(p.x() / z, p.y() / z);
+    if (static_cast<int>(out.angles.size()) >= coarse_points) continue;
+    // The projected edge direction: the derivative of the projection along the tangent.
+    const Eigen::Vector3d tangent = view.rotation * view.tangents[i].cast<double>();
+    const Eigen::Vector2d direction(tangent.x() * z - p.x() * tangent.z(), tangent.y() * z - p.y() * tangent.z());
+    out.angles.push_back(std::atan2(direction.y(), direction.x()));
+    out.directions.push_back(direction.normalized());
+  }
+  return out;
+}
+
 // A template at one view and in-plane rotation, projected with its origin on the
-// optical axis: its points' offsets from the origin's pixel and their orientation bins.
+// optical axis: its coarse points' offsets from the origin's pixel (pixels) and their
+// orientation bins.
 struct ProjectedTemplate {
   std::vector<Eigen::Vector2d> offsets;
   std::vector<int> bins;
   Eigen::AlignedBox2d bounds;  // of all the view's points
 };
 
-ProjectedTemplate project_on_axis(const EdgeView& view, const Eigen::Matrix3d& rotation,
-                                  double depth, const PinholeCamera& camera, int coarse_points,
-                                  const DcdTensor& tensor) {
+// `view` turned by `angle` about the optical axis. With square pixels the turn adds
+// `angle` to every edge direction; otherwise the direction is measured in pixels.
+ProjectedTemplate turn_view(const ProjectedView& view, double angle, const PinholeCamera& camera,
+                            const DcdTensor& tensor) {
   ProjectedTemplate out;
-  const int n = static_cast<int>(view.points.size());
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d p = rotation * view.points[i].cast<double>();
-    const double z = p.z() + depth;
-    if (z <= 1e-6) continue;
-    const Eigen::Vector2d offset(camera.fx * p.x() / z, camera.fy * p.y() / z);
+  const double c = std::cos(angle), s = std::sin(angle);
+  const bool square = camera.fx == camera.fy;
+  for (std::size_t i = 0; i < view.normalised.size(); ++i) {
+    const Eigen::Vector2d& q = view.normalised[i];
+    const Eigen::Vector2d offset(camera.fx * (c * q.x() - s * q.y()), camera.fy * (s * q.x() + c * q.y()));
     out.bounds.extend(offset);
-    if (i >= coarse_points) continue;
-    // The projected edge direction: the derivative of the projection along the tangent.
-    const Eigen::Vector3d tangent = rotation * view.tangents[i].cast<double>();
-    const double du = camera.fx * (tangent.x() * z - p.x() * tangent.z());
-    const double dv = camera.fy * (tangent.y() * z - p.y() * tangent.z());
+    if (i >= view.angles.size()) continue;
     out.offsets.push_back(offset);
-    out.bins.push_back(tensor.bin_of(std::atan2(dv, du)));
+    if (square) {
+      out.bins.push_back(tensor.bin_of(view.angles[i] + angle));
+    } else {
+      const Eigen::Vector2d& d = view.directions[i];
+      out.bins.push_back(tensor.bin_of(std::atan2(camera.fy * (s * d.x() + c * d.y()), camera.fx * (c * d.x() - s * d.y()))));
+    }
   }
   return out;
 }
@@ -151,42 +181,55 @@ std::vector<PoseCandidate> search_templates(const PartTemplates& part, int in_pl
     double step_x, step_y;  // spacing of the coarse grid it was found on
   };
   // Every view and rotation on a coarse grid of positions (at most grid_positions per
-  // axis over the range where it covers the box)...
+  // axis over the range where it covers the box). Only the best refined_templates of
+  // them go on, so a template may stop scoring once it cannot join them: the worst of
+  // the best so far bounds every sum (the result is the same as scoring all in full).
   std::vector<Best> best;
+  auto worse = [](const Best& a, const Best& b) {
+    if (a.cost != b.cost) return a.cost < b.cost;
+    return std::make_pair(a.view, a.in_plane) < std::make_pair(b.view, b.in_plane);
+  };
+  const std::size_t keep = static_cast<std::size_t>(params.refined_templates);
   for (int v = 0; v < static_cast<int>(part.views.size()); ++v) {
     const EdgeView& view = part.views[v];
     const double depth = surface_depth - view.surface_depth_offset;
     if (depth <= 0.0) continue;
+    const ProjectedView projected = project_view(view, depth, params.coarse_points);
+    if (projected.angles.empty()) continue;
     for (int k = 0; k < in_plane_steps; ++k) {
-      const Eigen::Matrix3d rotation = in_plane_rotation(k, in_plane_steps) * view.rotation;
-      const ProjectedTemplate t = project_on_axis(view, rotation, depth, camera, params.coarse_points, tensor);
-      if (t.offsets.empty()) continue;
+      const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * k / in_plane_steps, camera, tensor);
       const Eigen::Vector2d size = t.bounds.sizes();
       if (size.x() < params.min_cover * box.width || size.y() < params.min_cover * box.height) continue;
       if (size.x() * size.y() > params.max_area_ratio * box.area()) continue;
       const std::vector<double> us = positions(t.bounds.min().x(), t.bounds.max().x(), box.x, box.x + box.width - 1, slack_x, params);
       const std::vector<double> vs = positions(t.bounds.min().y(), t.bounds.max().y(), box.y, box.y + box.height - 1, slack_y, params);
-      Best here{1e30, {}, v, k, depth, us.size() > 1 ? us[1] - us[0] : 0.0, vs.size() > 1 ? vs[1] - vs[0] : 0.0};
+      const double bound = best.size() < keep ? 1e30 : best.front().cost;
+      Best here{bound, {}, v, k, depth, us.size() > 1 ? us[1] - us[0] : 0.0, vs.size() > 1 ? vs[1] - vs[0] : 0.0};
+      bool found = false;
       for (double u0 : us) {
         for (double v0 : vs) {
           const double cost = mean_cost(t, u0, v0, compact, tensor_origin, here.cost);
-          if (cost < here.cost) here = {cost, {u0, v0}, v, k, depth, here.step_x, here.step_y};
+          if (cost < here.cost) {
+            here = {cost, {u0, v0}, v, k, depth, here.step_x, here.step_y};
+            found = true;
+          }
         }
       }
+      if (!found) continue;
+      // `best` is a max-heap on (cost, view, rotation) holding the best `keep` so far.
       best.push_back(here);
+      std::push_heap(best.begin(), best.end(), worse);
+      if (best.size() > keep) {
+        std::pop_heap(best.begin(), best.end(), worse);
+        best.pop_back();
+      }
     }
   }
   // ... then the best of them searched around their position at position_step.
-  const std::size_t refined = std::min<std::size_t>(best.size(), params.refined_templates);
-  std::partial_sort(best.begin(), best.begin() + refined, best.end(), [](const Best& a, const Best& b) {
-    if (a.cost != b.cost) return a.cost < b.cost;
-    return std::make_pair(a.view, a.in_plane) < std::make_pair(b.view, b.in_plane);
-  });
-  best.resize(refined);
+  std::sort_heap(best.begin(), best.end(), worse);
   for (Best& b : best) {
-    const EdgeView& view = part.views[b.view];
-    const Eigen::Matrix3d rotation = in_plane_rotation(b.in_plane, in_plane_steps) * view.rotation;
-    const ProjectedTemplate t = project_on_axis(view, rotation, b.depth, camera, params.coarse_points, tensor);
+    const ProjectedView projected = project_view(part.views[b.view], b.depth, params.coarse_points);
+    const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * b.in_plane / in_plane_steps, camera, tensor);
     const Eigen::Vector2d centre = b.origin;
     for (double du = -b.step_x / 2; du <= b.step_x / 2 + 1e-9; du += params.position_step) {
       for (double dv = -b.step_y / 2; dv <= b.step_y / 2 + 1e-9; dv += params.position_step) {
@@ -198,10 +241,7 @@ std::vector<PoseCandidate> search_templates(const PartTemplates& part, int in_pl
       }
     }
   }
-  std::sort(best.begin(), best.end(), [](const Best& a, const Best& b) {
-    if (a.cost != b.cost) return a.cost < b.cost;
-    return std::make_pair(a.view, a.in_plane) < std::make_pair(b.view, b.in_plane);
-  });
+  std::sort(best.begin(), best.end(), worse);
   // Neighbouring views and rotations of one good fit score alike: keep only candidates
   // that differ from those kept by a turn or a shift, so the refinement starts from
   // distinct hypotheses.

@@ -84,7 +84,9 @@ TEST_F(PoseCli, PosesMostIsolatedPartsWithinAddS) {
   const fs::path out = dir_ / "poses";
   RunResult r = run_flexsight(pose_command("--out " + out.string()), dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* name : {"poses.csv", "report.md", "poses.jpg"}) EXPECT_TRUE(fs::exists(out / name)) << name;
+  for (const char* name : {"poses.csv", "report.md", "report.json", "poses.jpg"}) {
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  }
   const auto records = read_bop_pose_results((out / "poses.csv").string());
   EXPECT_EQ(records.size(), 8u);
   const fs::path eval = dir_ / "eval";
@@ -99,6 +101,29 @@ TEST_F(PoseCli, PosesMostIsolatedPartsWithinAddS) {
   // about it (docs/pose.md). Floors that random or unrefined poses fall far below.
   EXPECT_GE(report["add_recall"].get<double>(), 0.25) << report.dump(1);
   EXPECT_GE(report["ar_vsd"].get<double>(), 0.65) << report.dump(1);
+
+  // pose scores what it estimated as eval-pose does, and adds the times.
+  std::ifstream own_in(out / "report.json");
+  const auto own = nlohmann::json::parse(own_in);
+  EXPECT_EQ(own["add_recall"], report["add_recall"]);
+  EXPECT_EQ(own["ar"], report["ar"]);
+  EXPECT_EQ(own["counts"]["targets"], report["counts"]["targets"]);
+  EXPECT_EQ(own["parts_posed"].get<int>(), 8);
+  EXPECT_GT(own["wall_ms_per_part"].get<double>(), 0.0);
+  for (const char* stage : {"edges", "search", "icp", "score", "total"}) {
+    EXPECT_GT(own["median_ms_per_part"][stage].get<double>(), 0.0) << stage;
+  }
+}
+
+TEST_F(PoseCli, LimitScoresOnlyThePosedImages) {
+  const fs::path out = dir_ / "poses";
+  const RunResult r = run_flexsight(pose_command("--limit 3 --out " + out.string()), dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["counts"]["images"].get<int>(), 3);
+  EXPECT_EQ(report["counts"]["targets"].get<int>(), 3);
+  EXPECT_EQ(report["counts"]["estimates"].get<int>(), 3);
 }
 
 TEST_F(PoseCli, BadInputIsAnErrorAndWritesNothing) {
@@ -115,6 +140,14 @@ TEST_F(PoseCli, BadInputIsAnErrorAndWritesNothing) {
   // A CAD folder without obj_21.
   fs::create_directories(dir_ / "cad_without_21");
   fs::copy_file(root_ / "cad" / "obj_05.stl", dir_ / "cad_without_21" / "obj_05.stl");
+  // A models_info for other meshes: obj_05's diameter doubled.
+  const fs::path other_info = dir_ / "other_models_info.json";
+  {
+    std::ifstream in(std::string(FLEXSIGHT_SOURCE_DIR) + "/models/tless-cad/models_info.json");
+    auto info = nlohmann::json::parse(in);
+    info["5"]["diameter"] = 2.0 * info["5"]["diameter"].get<double>();
+    std::ofstream(other_info) << info.dump();
+  }
   const std::string data = (root_ / "data").string();
   struct Case {
     std::string arguments, expected;
@@ -131,6 +164,7 @@ TEST_F(PoseCli, BadInputIsAnErrorAndWritesNothing) {
       {pose_command("--out " + out.string() + " --min-visib 2"), "--min-visib"},
       {pose_command("--out " + out.string() + " --refinement maybe"), "--refinement"},
       {pose_command("--out " + out.string() + " --limit 0"), "--limit"},
+      {pose_command("--out " + out.string() + " --models-info " + other_info.string()), other_info.string()},
       {"pose-templates " + (root_ / "cad").string(), "-o"},
       {"pose-templates " + (dir_ / "nowhere").string() + " -o " + (dir_ / "t.tpl").string(), "nowhere"},
       {"pose-templates " + (root_ / "cad").string() + " -o " + (dir_ / "t.tpl").string() + " --views 0", "--views"},
