@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <set>
 #include <opencv2/imgcodecs.hpp>
@@ -185,7 +186,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const PoseReport report = score_pose_estimates(scoring, scoring_models);
   write_pose_dataset_outputs(staged.path(), reader, image_count, records, timing, report, models);
   staged.commit();
-  std::cout << "pose: " << records.size() << " parts in " << image_count << " images: ADD(-S) recall "
+  std::cout << std::fixed << std::setprecision(3) << "pose: " << records.size() << " parts in " << image_count << " images: ADD(-S) recall "
             << report.total.add_recall() << ", AR " << report.total.ar() << " -> " << out << "\n";
   return 0;
 }

@@ -64,6 +64,9 @@ void PoseEstimatorParams::check() const {
   if (!(box_margin >= 0.0 && box_margin <= 2.0)) throw InputError("pose parameter box_margin", "must be in [0, 2]");
   if (max_scene_points < 10) throw InputError("pose parameter max_scene_points", "must be at least 10");
   if (scored_candidates < 1) throw InputError("pose parameter scored_candidates", "must be at least 1");
+  if (!(retry_below_score >= 0.0 && retry_below_score <= 1.0)) {
+    throw InputError("pose parameter retry_below_score", "must be in [0, 1]");
+  }
   if (max_model_points < 10) throw InputError("pose parameter max_model_points", "must be at least 10");
   if (!(depth_tolerance > 0.0)) throw InputError("pose parameter depth_tolerance", "must be positive");
 }
@@ -224,28 +227,26 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
   }
   std::stable_sort(refined.begin(), refined.end(),
                    [](const Refined& a, const Refined& b) { return a.edge_cost < b.edge_cost; });
-  if (static_cast<int>(refined.size()) > params.scored_candidates) refined.resize(params.scored_candidates);
 
-  // Half turns of each candidate about the model's axes join them: edges and a depth
-  // surface seen from one side often fit a part and its turned twin about equally, and
-  // only the complete fit (ICP, then the score) tells them apart.
-  if (params.try_half_turns && params.refinement != PoseRefinement::kEdgesOnly) {
-    const std::size_t count = refined.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      for (int axis = 0; axis < 3; ++axis) {
-        Refined turned = refined[i];
-        const Eigen::Vector3d centre = model.mesh->bounds.center().cast<double>();
-        const Eigen::Matrix3d half = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
-        // Turn about the axis through the box centre, which stays where it was.
-        turned.pose.R = refined[i].pose.R * half;
-        turned.pose.t = refined[i].pose.t + refined[i].pose.R * (centre - half * centre);
-        refined.push_back(turned);
-      }
+  // Half turns of a candidate about the model's axes join it: edges and a depth surface
+  // seen from one side often fit a part and its turned twin about equally, and only the
+  // complete fit (ICP, then the score) tells them apart.
+  auto with_half_turns = [&](const Refined& r) {
+    std::vector<Refined> out{r};
+    if (!params.try_half_turns || params.refinement == PoseRefinement::kEdgesOnly) return out;
+    const Eigen::Vector3d centre = model.mesh->bounds.center().cast<double>();
+    for (int axis = 0; axis < 3; ++axis) {
+      Refined turned = r;
+      const Eigen::Matrix3d half = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+      // Turn about the axis through the box centre, which stays where it was.
+      turned.pose.R = r.pose.R * half;
+      turned.pose.t = r.pose.t + r.pose.R * (centre - half * centre);
+      out.push_back(turned);
     }
-  }
-
+    return out;
+  };
   bool first = true;
-  for (const Refined& r : refined) {
+  auto fit_and_score = [&](const Refined& r) {
     Pose pose = r.pose;
     start = Clock::now();
     if (params.refinement != PoseRefinement::kEdgesOnly) {
@@ -265,6 +266,14 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
       estimate.depth_fit = fit;
       first = false;
     }
+  };
+  // The best few candidates by edge fit are fitted to the depth and scored; when none
+  // scores well, the rest of them too (a part seen from an ambiguous side: the cost
+  // falls on the hard parts only).
+  const std::size_t scored = std::min<std::size_t>(refined.size(), params.scored_candidates);
+  for (std::size_t i = 0; i < refined.size(); ++i) {
+    if (i >= scored && estimate.score >= params.retry_below_score) break;
+    for (const Refined& r : with_half_turns(refined[i])) fit_and_score(r);
   }
   return estimate;
 }

@@ -34,6 +34,8 @@ struct PoseEstimatorParams {
   double box_margin = 0.25;      // the tensor covers the box grown by this much per side
   int scored_candidates = 3;     // the best candidates after the edge refinement that
                                  // are fitted to the depth and scored
+  double retry_below_score = 0.5;  // when the best of those scores below this, every
+                                   // other candidate is fitted and scored too
   bool try_half_turns = true;    // also fit each scored candidate turned by 180 degrees
                                  // about the model's x, y and z axes
   int max_scene_points = 1500;   // depth pixels of the box used by ICP (evenly strided)

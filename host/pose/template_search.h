@@ -16,7 +16,7 @@ namespace flexsight {
 struct SearchParams {
   int coarse_points = 32;        // edge points per template scored in the search (the
                                  // first of the farthest-point order: an even subset)
-  int grid_positions = 5;        // per axis: every template is first tried on a grid
+  int grid_positions = 4;        // per axis: every template is first tried on a grid
                                  // this fine over the positions where it covers the box
   int refined_templates = 64;    // the best templates of the grid are then tried
   double position_step = 1.0;    // this many pixels apart around their best position
