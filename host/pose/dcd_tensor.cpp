@@ -212,7 +212,8 @@ double DcdTensor::sample(double x, double y, int bin, double* dx, double* dy) co
   if (!(x >= 0.0 && x <= w - 1 && y >= 0.0 && y <= h - 1)) {
     if (dx) *dx = 0.0;
     if (dy) *dy = 0.0;
-    return max_distance_;
+    if (!(std::abs(x) < 1e9 && std::abs(y) < 1e9)) return max_distance_;  // NaN, or far off
+    return outside_cost(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)));
   }
   // The cell pair that brackets x; at the last centre, the pair that ends there.
   const int x0 = std::min(static_cast<int>(x), std::max(w - 2, 0));
@@ -225,6 +226,28 @@ double DcdTensor::sample(double x, double y, int bin, double* dx, double* dy) co
   if (dx) *dx = (1.0 - fy) * (v10 - v00) + fy * (v11 - v01);
   if (dy) *dy = (1.0 - fx) * (v01 - v00) + fx * (v11 - v10);
   return (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
+}
+
+void DcdTensor::cap(const cv::Mat& mask, cv::Point mask_origin, float value) {
+  if (mask.type() != CV_8UC1) throw std::invalid_argument("DcdTensor::cap: the mask must be 8-bit");
+  hidden_ = mask.clone();
+  hidden_origin_ = mask_origin;
+  hidden_cost_ = std::min(value, max_distance_);
+  // The part of the mask over the tensor caps its cells.
+  const cv::Rect over_tensor = cv::Rect(mask_origin, mask.size()) & cv::Rect(0, 0, width(), height());
+  if (over_tensor.empty()) return;
+  const cv::Mat under = mask(over_tensor - mask_origin);
+  for (cv::Mat& layer : layers_) {
+    cv::Mat cells = layer(over_tensor), capped;
+    cv::min(cells, hidden_cost_, capped);
+    capped.copyTo(cells, under);
+  }
+}
+
+float DcdTensor::outside_cost(int x, int y) const {
+  const int mx = x - hidden_origin_.x, my = y - hidden_origin_.y;
+  if (hidden_.empty() || mx < 0 || my < 0 || mx >= hidden_.cols || my >= hidden_.rows) return max_distance_;
+  return hidden_.at<std::uint8_t>(my, mx) ? hidden_cost_ : max_distance_;
 }
 
 const cv::Mat& DcdTensor::layer(int bin) const {

@@ -59,6 +59,17 @@ class DcdTensor {
   double sample(double x, double y, int bin, double* dx = nullptr, double* dy = nullptr) const;
   // CV_32FC1 height x width; std::invalid_argument for a bin out of range.
   const cv::Mat& layer(int bin) const;
+  // Where something in front of the part hides it, a template point has no edge to
+  // meet: it should cost a middling fit, not the saturated distance (else the true pose
+  // of a partly hidden part loses to any pose that avoids the hidden side). Cells under
+  // `mask` (CV_8UC1, its pixel (0, 0) on cell `mask_origin`; it may reach beyond the
+  // tensor, whose region is the visible box grown a little, while a hidden part reaches
+  // farther) cost at most `value` in every bin, and so do places outside the tensor
+  // that the mask covers. std::invalid_argument for a mask that is not 8-bit.
+  void cap(const cv::Mat& mask, cv::Point mask_origin, float value);
+  // What a place outside the tensor costs: `value` of cap() where its mask is set,
+  // max_distance elsewhere.
+  float outside_cost(int x, int y) const;
 
  private:
   void check_bin(int bin) const;
@@ -66,6 +77,9 @@ class DcdTensor {
   int bins_ = 0;
   float max_distance_ = 0.0f;
   std::vector<cv::Mat> layers_;
+  cv::Mat hidden_;            // cap()'s mask
+  cv::Point hidden_origin_;   // the cell of its pixel (0, 0)
+  float hidden_cost_ = 0.0f;
 };
 
 }  // namespace flexsight

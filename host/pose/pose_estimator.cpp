@@ -69,6 +69,12 @@ void PoseEstimatorParams::check() const {
   }
   if (max_model_points < 10) throw InputError("pose parameter max_model_points", "must be at least 10");
   if (!(depth_tolerance > 0.0)) throw InputError("pose parameter depth_tolerance", "must be positive");
+  if (!(occluder_margin >= 0.0 && occluder_margin <= 10.0)) {
+    throw InputError("pose parameter occluder_margin", "must be in [0, 10] diameters (0 = off)");
+  }
+  if (!(occluded_point_cost >= 0.0 && occluded_point_cost <= dcd.max_distance)) {
+    throw InputError("pose parameter occluded_point_cost", "must be in [0, the tensor's max_distance]");
+  }
 }
 
 double box_surface_depth(const cv::Mat& depth, const cv::Rect& box) {
@@ -188,12 +194,21 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
 
   auto start = Clock::now();
   const cv::Rect region = grow(box, params.box_margin, image.size());
-  const DcdTensor tensor(detect_edges(image, region, params.dcd), params.dcd);
+  const double surface_depth = box_surface_depth(depth, box);
+  if (!(surface_depth > 0.0)) throw InputError("depth", "has no measured pixel in the box");
+  DcdTensor tensor(detect_edges(image, region, params.dcd), params.dcd);
+  if (params.occluder_margin > 0.0) {
+    // Pixels measured well in front of the part's surface belong to something that
+    // hides it; a hidden part may reach as far as the largest template the search
+    // allows (max_area_ratio times the box).
+    const cv::Rect reach = grow(box, std::sqrt(params.search.max_area_ratio), image.size());
+    const cv::Mat nearer = depth(reach) < surface_depth - params.occluder_margin * model.mesh->diameter;
+    const cv::Mat hidden = nearer & (depth(reach) > 0.0f);
+    tensor.cap(hidden, reach.tl() - region.tl(), static_cast<float>(params.occluded_point_cost));
+  }
   estimate.times.edges_ms = ms_since(start);
 
   start = Clock::now();
-  const double surface_depth = box_surface_depth(depth, box);
-  if (!(surface_depth > 0.0)) throw InputError("depth", "has no measured pixel in the box");
   const std::vector<PoseCandidate> candidates =
       search_templates(*model.templates, model.in_plane_steps, tensor, region.tl(), camera, box,
                        surface_depth, params.search);

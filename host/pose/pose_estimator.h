@@ -41,6 +41,10 @@ struct PoseEstimatorParams {
   int max_scene_points = 1500;   // depth pixels of the box used by ICP (evenly strided)
   int max_model_points = 1500;   // visible model surface points used by ICP
   double depth_tolerance = 0.02; // of the diameter (at least 2 mm): a depth that agrees
+  // Depth pixels nearer than the box's surface depth minus this many diameters hide the
+  // part (0 = off); an edge point there costs occluded_point_cost pixels at most.
+  double occluder_margin = 0.3;
+  double occluded_point_cost = 4.0;
   void check() const;
 };
 

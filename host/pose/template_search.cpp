@@ -76,7 +76,7 @@ ProjectedTemplate turn_view(const ProjectedView& view, double angle, const Pinho
 class CompactTensor {
  public:
   explicit CompactTensor(const DcdTensor& tensor)
-      : width_(tensor.width()), height_(tensor.height()), bins_(tensor.bins()),
+      : tensor_(tensor), width_(tensor.width()), height_(tensor.height()), bins_(tensor.bins()),
         cells_(static_cast<std::size_t>(width_) * height_ * bins_) {
     for (int b = 0; b < bins_; ++b) {
       cv::Mat bytes(height_, width_, CV_8UC1, cells_.data() + static_cast<std::size_t>(b) * width_ * height_);
@@ -92,7 +92,7 @@ class CompactTensor {
       const int x = static_cast<int>(std::floor(u0 + offsets[i].x() + 0.5));
       const int y = static_cast<int>(std::floor(v0 + offsets[i].y() + 0.5));
       if (x < 0 || y < 0 || x >= width_ || y >= height_) {
-        total += 255;
+        total += static_cast<int>(std::min(255.0, tensor_.outside_cost(x, y) * kScale));
       } else {
         total += cells_[(static_cast<std::size_t>(bins[i]) * height_ + y) * width_ + x];
       }
@@ -103,6 +103,7 @@ class CompactTensor {
   static constexpr double kScale = 8.0;
 
  private:
+  const DcdTensor& tensor_;
   int width_, height_, bins_;
   std::vector<std::uint8_t> cells_;
 };

@@ -265,6 +265,32 @@ TEST(DcdTensorSample, OutsideTheCentresCostsMaxDistanceWithoutSlope) {
   EXPECT_THROW(tensor.layer(tensor.bins()), std::invalid_argument);
 }
 
+TEST(DcdTensorCap, HiddenCellsAndHiddenPlacesOutsideCostAtMostTheCap) {
+  DcdTensor tensor = sampling_tensor();
+  const int w = tensor.width(), h = tensor.height();
+  const DcdTensor before = sampling_tensor();
+  // A mask from 2 cells left of the tensor to its middle column, rows 1..2 set.
+  cv::Mat mask(h + 4, w / 2 + 2, CV_8UC1, cv::Scalar(0));
+  mask.rowRange(3, 5).setTo(255);  // mask rows 3, 4 = tensor rows 1, 2
+  tensor.cap(mask, cv::Point(-2, -2), 4.0f);
+  for (int b = 0; b < tensor.bins(); ++b) {
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const bool hidden = (y == 1 || y == 2) && x < w / 2;
+        const float expected = hidden ? std::min(4.0f, before.at(x, y, b)) : before.at(x, y, b);
+        ASSERT_EQ(tensor.at(x, y, b), expected) << x << ", " << y << ", bin " << b;
+      }
+    }
+  }
+  // Outside the tensor: the cap where the mask is set, max_distance elsewhere.
+  EXPECT_EQ(tensor.outside_cost(-1, 1), 4.0f);
+  EXPECT_EQ(tensor.sample(-1.0, 2.0, 0), 4.0);
+  EXPECT_EQ(tensor.outside_cost(-1, 0), 30.0f);
+  EXPECT_EQ(tensor.outside_cost(-3, 1), 30.0f);  // beyond the mask
+  EXPECT_EQ(tensor.outside_cost(w + 5, 1), 30.0f);
+  EXPECT_THROW(tensor.cap(cv::Mat(2, 2, CV_32FC1), cv::Point(0, 0), 4.0f), std::invalid_argument);
+}
+
 // A bright rectangle on a dark background: columns 30..89, rows 20..69.
 cv::Mat rectangle_image() {
   cv::Mat image(100, 120, CV_8UC1, cv::Scalar(50));
