@@ -1,6 +1,8 @@
 #include "host/cli/arguments.h"
 
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <cstring>
 #include <functional>
 #include <sstream>
@@ -41,21 +43,30 @@ auto parse_whole(const std::string& name, const std::string& text, const char* w
   throw InputError(option_subject(name), std::string("expected ") + what + ", got '" + text + "'");
 }
 
-long parse_integer(const std::string& name, const std::string& text) {
-  return parse_whole(name, text, "an integer",
-                     [](const std::string& t, size_t* used) { return std::stol(t, used); });
+// Whether a float option may be infinite: only where infinity has a documented meaning
+// ("inf = off"); NaN never is a value.
+enum class Infinity { kRejected, kMeaningful };
+
+float parse_float(const std::string& name, const std::string& text, Infinity infinity = Infinity::kRejected) {
+  const float value = parse_whole(name, text, "a number",
+                                  [](const std::string& t, size_t* used) { return std::stof(t, used); });
+  if (std::isnan(value) || (std::isinf(value) && infinity == Infinity::kRejected)) {
+    throw InputError(option_subject(name), std::string("expected a finite number") +
+                                               (infinity == Infinity::kMeaningful ? " or inf" : "") + ", got '" +
+                                               text + "'");
+  }
+  return value;
 }
 
-float parse_float(const std::string& name, const std::string& text) {
-  return parse_whole(name, text, "a number",
-                     [](const std::string& t, size_t* used) { return std::stof(t, used); });
-}
-
+// Integers are read into the field's own type: a value it cannot hold is an error, never
+// wrapped around.
 template <typename Field>
 ParamOption integer_option(const char* name, Field StereoParams::*field, const char* help) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) {
-            p.*field = static_cast<Field>(parse_integer(name, v));
+            p.*field = static_cast<Field>(parse_whole_number(std::string("--") + name, v,
+                                                             std::numeric_limits<Field>::min(),
+                                                             std::numeric_limits<Field>::max()));
           },
           [field](const StereoParams& p) { return std::to_string(p.*field); }};
 }
@@ -64,18 +75,17 @@ ParamOption integer_option(const char* name, Field StereoParams::*field, const c
 ParamOption flag_option(const char* name, bool StereoParams::*field, const char* help) {
   return {name, help,
           [name, field](StereoParams& p, const std::string& v) {
-            const long value = parse_integer(name, v);
-            if (value != 0 && value != 1) {
-              throw InputError(option_subject(name), "must be 0 or 1, got '" + v + "'");
-            }
+            if (v != "0" && v != "1") throw InputError(option_subject(name), "must be 0 or 1, got '" + v + "'");
+            const int value = v == "1";
             p.*field = value == 1;
           },
           [field](const StereoParams& p) { return std::string(p.*field ? "1" : "0"); }};
 }
 
-ParamOption float_option(const char* name, float StereoParams::*field, const char* help) {
+ParamOption float_option(const char* name, float StereoParams::*field, const char* help,
+                         Infinity infinity = Infinity::kRejected) {
   return {name, help,
-          [name, field](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v); },
+          [name, field, infinity](StereoParams& p, const std::string& v) { p.*field = parse_float(name, v, infinity); },
           [field](const StereoParams& p) { return float_text(p.*field); }};
 }
 
@@ -113,7 +123,7 @@ const std::vector<ParamOption>& param_options() {
       float_option("gamma", &StereoParams::gamma,
                    "support weight bandwidth"),
       float_option("gamma-distance", &StereoParams::gamma_distance,
-                   "support weight distance bandwidth (px, inf = off)"),
+                   "support weight distance bandwidth (px, inf = off)", Infinity::kMeaningful),
       float_option("census-weight", &StereoParams::census_weight,
                    "weight of the 5x5 census distance (0 = off)"),
       float_option("census-cap", &StereoParams::census_cap,
@@ -155,7 +165,8 @@ const std::vector<ParamOption>& param_options() {
       float_option("median-gamma", &StereoParams::median_gamma,
                    "weighted median colour bandwidth"),
       float_option("fill-max-extrapolation", &StereoParams::fill_max_extrapolation,
-                   "filled disparity at most this far from its source pixel's (px, inf = plane)"),
+                   "filled disparity at most this far from its source pixel's (px, inf = plane)",
+                   Infinity::kMeaningful),
       float_option("median-background-margin", &StereoParams::median_background_margin,
                    "hole median: votes at most this far above the filled disparity (px)"),
       integer_option("final-median-window", &StereoParams::final_median_window,
@@ -171,11 +182,7 @@ const std::vector<ParamOption>& param_options() {
       // clang-format on
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
-         long value = parse_integer("seed", v);
-         if (value < 0 || value > 0xffffffffL) {
-           throw InputError(option_subject("seed"), "must be in 0..4294967295");
-         }
-         p.seed = static_cast<std::uint32_t>(value);
+         p.seed = static_cast<std::uint32_t>(parse_whole_number("--seed", v, 0, 0xffffffffLL));
        },
        [](const StereoParams& p) { return std::to_string(p.seed); }},
       integer_option("threads", &StereoParams::threads,

@@ -71,14 +71,23 @@ void print_help() {
             << stereo_params_help();
 }
 
-std::vector<std::string> split_list(const std::string& text) {
+// The names of --scenes: comma-separated, spaces around them ignored. An empty list or
+// an empty name ("A,,B", "A,") is an error: a selection that names nothing must not
+// widen to every scene.
+std::vector<std::string> split_scene_list(const std::string& text) {
   std::vector<std::string> items;
   std::stringstream stream(text);
   std::string item;
   while (std::getline(stream, item, ',')) {
     const auto first = item.find_first_not_of(" \t");
     const auto last = item.find_last_not_of(" \t");
-    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
+    if (first == std::string::npos) {
+      throw InputError("option --scenes", "has an empty scene name in '" + text + "' (expected A,B,C)");
+    }
+    items.push_back(item.substr(first, last - first + 1));
+  }
+  if (items.empty() || text.back() == ',') {
+    throw InputError("option --scenes", "names no scene in '" + text + "' (expected A,B,C)");
   }
   return items;
 }
@@ -107,8 +116,9 @@ EvalOptions parse_options(std::vector<std::string> args) {
   options.results_dir = take_option(args, "--results");
   const std::string out = take_option(args, "--out");
   if (!out.empty()) options.out_dir = out;
+  const bool scenes_given = std::find(args.begin(), args.end(), "--scenes") != args.end();
   const std::string scenes = take_option(args, "--scenes");
-  if (!scenes.empty()) options.scene_names = split_list(scenes);
+  if (scenes_given) options.scene_names = split_scene_list(scenes);
   const std::string repeat = take_option(args, "--repeat");
   if (!repeat.empty()) {
     const float runs = parse_positive("--repeat", repeat);

@@ -93,26 +93,42 @@ StereoJob resolve_inputs(const std::vector<std::string>& positional, StereoParam
   return job;
 }
 
-// `confidence` may be empty (OpenCV's matchers have none).
-void print_scores(const cv::Mat& disparity, const cv::Mat& confidence, const StereoJob& job) {
-  cv::Mat gt = read_pfm(job.gt);
-  if (gt.size() != disparity.size() || gt.channels() != 1) {
-    throw InputError(job.gt, "ground truth is " + std::to_string(gt.cols) + "x" +
-                                 std::to_string(gt.rows) + ", the disparity " +
-                                 std::to_string(disparity.cols) + "x" +
-                                 std::to_string(disparity.rows));
+struct GroundTruth {
+  cv::Mat disparity;  // CV_32FC1
+  cv::Mat mask;       // empty: every pixel non-occluded
+};
+
+// --gt and --gt-mask, read and checked against the images before any matching, so that
+// a bad file fails before an output is written.
+GroundTruth load_ground_truth(const StereoJob& job, cv::Size images) {
+  GroundTruth truth;
+  truth.disparity = read_pfm(job.gt);
+  const cv::Mat& gt = truth.disparity;
+  if (gt.size() != images || gt.channels() != 1) {
+    throw InputError(job.gt, "ground truth is " + std::to_string(gt.cols) + "x" + std::to_string(gt.rows) + "x" +
+                                 std::to_string(gt.channels()) + ", the images " + std::to_string(images.width) +
+                                 "x" + std::to_string(images.height) + "x1 disparities");
   }
-  cv::Mat mask = job.gt_mask.empty() ? cv::Mat() : read_mask(job.gt_mask);
-  if (!mask.empty() && mask.size() != gt.size()) {
+  if (!job.gt_mask.empty()) truth.mask = read_mask(job.gt_mask);
+  if (!truth.mask.empty() && truth.mask.size() != gt.size()) {
     throw InputError(job.gt_mask, "mask size differs from the ground truth");
   }
+  return truth;
+}
+
+// `confidence` may be empty (OpenCV's matchers have none).
+void print_scores(const cv::Mat& disparity, const cv::Mat& confidence, const GroundTruth& truth) {
+  const cv::Mat& gt = truth.disparity;
+  const cv::Mat& mask = truth.mask;
   SceneScores scores = evaluate_disparity(disparity, gt, mask);
   std::printf("\n| pixels | bad 0.5 | bad 1 | bad 2 | bad 3 | bad 4 | avg err | density |\n"
               "|---|---|---|---|---|---|---|---|\n");
   auto row = [](const char* name, const ErrorStats& s) {
-    std::printf("| %s | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %.3f px | %.1f %% |\n",
-                name, s.bad_percent[0], s.bad_percent[1], s.bad_percent[2], s.bad_percent[3],
-                s.bad_percent[4], s.avg_error, s.density_percent);
+    char error[32] = "n/a";
+    if (std::isfinite(s.avg_error)) std::snprintf(error, sizeof error, "%.3f px", s.avg_error);
+    std::printf("| %s | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %.2f %% | %s | %.1f %% |\n", name,
+                s.bad_percent[0], s.bad_percent[1], s.bad_percent[2], s.bad_percent[3], s.bad_percent[4], error,
+                s.density_percent);
   };
   row("all", scores.all);
   if (!mask.empty()) row("nonocc", scores.nonocc);
@@ -193,6 +209,8 @@ int run_stereo_command(std::vector<std::string> args) {
   if (!gt_mask.empty()) job.gt_mask = gt_mask;
   if (cloud_options.calib.empty()) cloud_options.calib = job.calib;
   const StereoPair pair = load_stereo_pair(job.left, job.right);
+  if (!gt_mask.empty() && job.gt.empty()) throw InputError("option --gt-mask", "needs --gt");
+  const GroundTruth truth = job.gt.empty() ? GroundTruth{} : load_ground_truth(job, pair.left.size());
   if (job.ndisp_from_calib) std::cerr << "ndisp " << params.ndisp << " from calib.txt\n";
 
   ProgressCallback progress;
@@ -205,6 +223,7 @@ int run_stereo_command(std::vector<std::string> args) {
                                             " gives a disparity only: no --raw, --raw-right, "
                                             "--planes, --conf, --conf-png or --profile");
   }
+  if (opencv) check_opencv_matcher_size(*opencv, pair.left.size(), params.ndisp, job.left + " and " + job.right);
   // Every output's folder is checked before the matching, so that a mistyped path fails
   // in a second, not after the run with some of the outputs written.
   for (const std::string& path : {output, png, raw, raw_right, planes, conf, conf_png,
@@ -257,7 +276,7 @@ int run_stereo_command(std::vector<std::string> args) {
   }
   std::printf("wrote %s%s%s\n", output.c_str(), png.empty() ? "" : " and ", png.c_str());
   write_cloud_outputs(cloud_options, result.disparity, pair.left, result.planes_left, confidence);
-  if (!job.gt.empty()) print_scores(result.disparity, confidence, job);
+  if (!job.gt.empty()) print_scores(result.disparity, confidence, truth);
   return 0;
 }
 

@@ -1,6 +1,7 @@
 #include "host/eval/metrics.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -42,7 +43,9 @@ struct Tally {
     for (std::size_t t = 0; t < kBadThresholds.size(); ++t) {
       result.bad_percent[t] = 100.0 * static_cast<double>(bad[t]) / evaluated;
     }
-    result.avg_error = with_result > 0 ? error_sum / with_result : 0.0;
+    // No pixel with a result has no average error (NaN: "n/a" in reports, null in
+    // JSON), which zero would hide as a perfect score.
+    result.avg_error = with_result > 0 ? error_sum / with_result : std::numeric_limits<double>::quiet_NaN();
     result.density_percent = 100.0 * static_cast<double>(with_result) / evaluated;
     return result;
   }
@@ -121,15 +124,19 @@ ErrorStats average(const std::vector<ErrorStats>& stats) {
   ErrorStats mean;
   if (stats.empty()) return mean;  // nothing to average: all zeros, like an empty region
   double evaluated_sum = 0;
+  int with_error = 0;  // scenes that have an average error
   for (const ErrorStats& s : stats) {
     for (std::size_t t = 0; t < kBadThresholds.size(); ++t) mean.bad_percent[t] += s.bad_percent[t];
-    mean.avg_error += s.avg_error;
+    if (std::isfinite(s.avg_error)) {
+      mean.avg_error += s.avg_error;
+      ++with_error;
+    }
     mean.density_percent += s.density_percent;
     evaluated_sum += static_cast<double>(s.evaluated);
   }
   const double n = static_cast<double>(stats.size());
   for (double& percent : mean.bad_percent) percent /= n;
-  mean.avg_error /= n;
+  mean.avg_error = with_error > 0 ? mean.avg_error / with_error : std::numeric_limits<double>::quiet_NaN();
   mean.density_percent /= n;
   // Averaged like the other fields (the header's contract), rounded to a whole count.
   mean.evaluated = std::lround(evaluated_sum / n);

@@ -16,7 +16,7 @@ inline constexpr std::array<double, 5> kBadThresholds = {0.5, 1.0, 2.0, 3.0, 4.0
 
 struct ErrorStats {
   std::array<double, 5> bad_percent{};  // per kBadThresholds, in percent
-  double avg_error = 0;                 // pixels
+  double avg_error = 0;                 // pixels; NaN when no evaluated pixel has a result
   double density_percent = 0;           // share of evaluated pixels with a result
   long evaluated = 0;                   // number of evaluated pixels
   double bad(double threshold) const;   // throws std::invalid_argument if not in kBadThresholds
@@ -39,7 +39,8 @@ SceneScores evaluate_disparity(const cv::Mat& disparity, const cv::Mat& ground_t
 SceneScores evaluate_disparity(const cv::Mat& disparity, const cv::Mat& ground_truth,
                                const cv::Mat& nonocc_mask, const cv::Mat& selection);
 
-// Unweighted mean of the per-scene statistics (each field averaged over scenes).
+// Unweighted mean of the per-scene statistics (each field averaged over scenes; the
+// average error over the scenes that have one, NaN when none has).
 ErrorStats average(const std::vector<ErrorStats>& stats);
 
 }  // namespace flexsight

@@ -53,7 +53,7 @@ std::string markdown_header() {
 std::string markdown_stats(const ErrorStats& stats, double seconds) {
   std::string cells;
   for (double percent : stats.bad_percent) cells += " " + fixed(percent, kPercentDecimals) + " |";
-  cells += " " + fixed(stats.avg_error, kErrorDecimals) + " |";
+  cells += " " + (std::isfinite(stats.avg_error) ? fixed(stats.avg_error, kErrorDecimals) : std::string("n/a")) + " |";
   cells += " " + fixed(stats.density_percent, kPercentDecimals) + " |";
   // Results read from files have no matcher time.
   cells += " " + (seconds > 0 ? fixed(seconds, kSecondsDecimals) : std::string("-")) + " |";

@@ -141,11 +141,51 @@ void require_positive_focal(const MiddleburyFields& fields, const std::string& k
   if (!(cam[0] > 0) || !(cam[4] > 0)) fields.fail(key, "has a focal length <= 0");
 }
 
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;  // "0", "-3.5", "1e+300": shortest readable form, unlike std::to_string
+  return text.str();
+}
+
+// What makes two pinhole matrices a rectified pair as the matcher and the 3D code use
+// it: [f 0 cx; 0 f cy; 0 0 1] each, the same f (square pixels), the same row of the
+// principal point, and doffs = cx1 - cx0 (Middlebury's convention). Anything else would
+// be read silently as something it is not.
+constexpr double kFocalTolerance = 1e-4;  // relative: files print 3-7 digits
+constexpr double kPixelTolerance = 0.5;   // px
+
+void require_rectified_pair(const MiddleburyFields& fields, const MiddleburyCalib& calib) {
+  for (const auto& [key, cam] : {std::pair{"cam0", &calib.cam0}, std::pair{"cam1", &calib.cam1}}) {
+    const std::array<double, 9>& m = *cam;
+    for (double v : m) {
+      if (!std::isfinite(v)) fields.fail(key, "has a value that is not finite");
+    }
+    if (m[1] != 0 || m[3] != 0 || m[6] != 0 || m[7] != 0 || m[8] != 1) {
+      fields.fail(key, "is not a pinhole matrix [f 0 cx; 0 f cy; 0 0 1]");
+    }
+    if (std::abs(m[0] - m[4]) > kFocalTolerance * m[0]) {
+      fields.fail(key, "has fx " + number_text(m[0]) + " and fy " + number_text(m[4]) +
+                           ": only square pixels are supported");
+    }
+  }
+  if (std::abs(calib.cam0[0] - calib.cam1[0]) > kFocalTolerance * calib.cam0[0]) {
+    fields.fail("cam1", "has focal length " + number_text(calib.cam1[0]) + ", cam0 " + number_text(calib.cam0[0]) +
+                            ": the cameras of a rectified pair have the same focal length");
+  }
+  if (std::abs(calib.cam0[5] - calib.cam1[5]) > kPixelTolerance) {
+    fields.fail("cam1", "has its principal point on row " + number_text(calib.cam1[5]) + ", cam0 on row " +
+                            number_text(calib.cam0[5]) + ": the rows of a rectified pair match");
+  }
+  const double shift = calib.cam1[2] - calib.cam0[2];
+  if (!std::isfinite(calib.doffs) || std::abs(calib.doffs - shift) > kPixelTolerance) {
+    fields.fail("doffs", "is " + number_text(calib.doffs) + ", but cam1's cx - cam0's cx is " + number_text(shift) +
+                             " (doffs is the difference of the principal points)");
+  }
+}
+
 void require_positive(const MiddleburyFields& fields, const std::string& key, double value) {
   if (!(value > 0)) {
-    std::ostringstream text;
-    text << value;  // "0", "-3.5": shortest readable form, unlike std::to_string
-    fields.fail(key, "must be positive, got " + text.str());
+    fields.fail(key, "must be positive, got " + number_text(value));
   }
 }
 
@@ -209,6 +249,7 @@ MiddleburyCalib read_middlebury_calib(const std::string& path) {
   require_positive(fields, "width", calib.width);
   require_positive(fields, "height", calib.height);
   require_positive(fields, "ndisp", calib.ndisp);
+  require_rectified_pair(fields, calib);
   return calib;
 }
 
@@ -217,6 +258,23 @@ KittiCalib read_kitti_calib(const std::string& path) {
   KittiCalib calib;
   calib.P0 = kitti_matrix(lines, {"P0", "P_rect_00"}, path);
   calib.P1 = kitti_matrix(lines, {"P1", "P_rect_01"}, path);
+  const std::array<double, 12>& p0 = calib.P0;
+  const std::array<double, 12>& p1 = calib.P1;
+  for (std::size_t i = 0; i < 12; ++i) {
+    if (!std::isfinite(p0[i]) || !std::isfinite(p1[i])) throw InputError(path, "has a value that is not finite");
+  }
+  if (std::abs(p0[0] - p0[5]) > kFocalTolerance * p0[0]) {
+    throw InputError(path, "P0 has fx " + number_text(p0[0]) + " and fy " + number_text(p0[5]) +
+                               ": only square pixels are supported");
+  }
+  if (std::abs(p0[0] - p1[0]) > kFocalTolerance * p0[0] || std::abs(p0[5] - p1[5]) > kFocalTolerance * p0[5]) {
+    throw InputError(path, "P1 has focal length " + number_text(p1[0]) + ", P0 " + number_text(p0[0]) +
+                               ": the cameras of a rectified pair have the same focal length");
+  }
+  if (std::abs(p0[6] - p1[6]) > kPixelTolerance) {
+    throw InputError(path, "P1 has its principal point on row " + number_text(p1[6]) + ", P0 on row " +
+                               number_text(p0[6]) + ": the rows of a rectified pair match");
+  }
   return calib;
 }
 

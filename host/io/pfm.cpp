@@ -8,6 +8,8 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
@@ -16,46 +18,39 @@
 namespace flexsight {
 namespace {
 
-bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-
-// Header tokens in a PFM file are separated by whitespace; some writers also add
-// "# ..." comment lines (as in PNM), which we skip.
-class HeaderReader {
+// The three header lines of a PFM file, exactly as the format defines them: the magic,
+// "width height", the scale; each ends with '\n' (a '\r' before it is allowed for files
+// written in text mode on Windows), and the data starts right after the third. No
+// comments, no tokens moved to another line: a header that says something else is not
+// read as something it is not.
+class HeaderLines {
  public:
-  HeaderReader(const std::string& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+  HeaderLines(const std::string& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
 
-  std::string next_token(const char* what) {
-    skip_whitespace_and_comments();
-    const std::size_t start = pos_;
-    while (pos_ < bytes_.size() && !is_space(bytes_[pos_]) && pos_ - start < kMaxToken) ++pos_;
-    if (pos_ == start) throw InputError(path_, std::string("header ends before the ") + what);
-    return bytes_.substr(start, pos_ - start);
-  }
-
-  // The scale is followed by exactly one whitespace byte, then the binary data; skipping
-  // more could eat data bytes that happen to look like whitespace.
-  std::size_t data_offset_after_scale() {
-    if (pos_ >= bytes_.size() || !is_space(bytes_[pos_])) {
-      throw InputError(path_, "header ends without the whitespace byte before the data");
+  // The whitespace-separated fields of the next line; InputError naming `what` when the
+  // file ends first or the line is longer than any header line can be.
+  std::vector<std::string> next_line(const char* what) {
+    const std::size_t end = bytes_.find('\n', pos_);
+    if (end == std::string::npos || end - pos_ > kMaxLine) {
+      throw InputError(path_, std::string("header ends before the end of its ") + what + " line");
     }
-    return pos_ + 1;
+    std::string line = bytes_.substr(pos_, end - pos_);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    pos_ = end + 1;
+    std::vector<std::string> fields;
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+      if (i > start) fields.push_back(line.substr(start, i - start));
+    }
+    return fields;
   }
+  std::size_t data_offset() const { return pos_; }
 
  private:
-  static constexpr std::size_t kMaxToken = 64;
-
-  void skip_whitespace_and_comments() {
-    while (pos_ < bytes_.size()) {
-      if (is_space(bytes_[pos_])) {
-        ++pos_;
-      } else if (bytes_[pos_] == '#') {
-        while (pos_ < bytes_.size() && bytes_[pos_] != '\n') ++pos_;
-      } else {
-        break;
-      }
-    }
-  }
-
+  static constexpr std::size_t kMaxLine = 128;
   const std::string& bytes_;
   const std::string& path_;
   std::size_t pos_ = 0;
@@ -115,21 +110,27 @@ struct PfmHeader {
 };
 
 PfmHeader parse_header(const std::string& bytes, const std::string& path) {
-  HeaderReader reader(bytes, path);
+  HeaderLines lines(bytes, path);
   PfmHeader header;
 
-  const std::string magic = reader.next_token("magic");
-  if (magic == "Pf") {
+  const std::vector<std::string> magic = lines.next_line("magic");
+  const std::string magic_text = magic.empty() ? std::string() : magic[0];
+  if (magic.size() == 1 && magic_text == "Pf") {
     header.channels = 1;
-  } else if (magic == "PF") {
+  } else if (magic.size() == 1 && magic_text == "PF") {
     header.channels = 3;
   } else {
-    throw InputError(path,
-                     "is not a PFM file (magic '" + printable(magic) + "', expected 'Pf' or 'PF')");
+    throw InputError(path, "is not a PFM file (first line '" + printable(bytes.substr(0, bytes.find('\n'))) +
+                               "', expected 'Pf' or 'PF')");
   }
 
-  const long long width = parse_dimension(reader.next_token("width"), "width", path);
-  const long long height = parse_dimension(reader.next_token("height"), "height", path);
+  const std::vector<std::string> size = lines.next_line("size");
+  if (size.size() != 2) {
+    throw InputError(path, "has " + std::to_string(size.size()) +
+                               " fields on its size line, expected two: width height");
+  }
+  const long long width = parse_dimension(size[0], "width", path);
+  const long long height = parse_dimension(size[1], "height", path);
   if (width <= 0 || height <= 0) {
     throw InputError(path, "has non-positive dimensions " + std::to_string(width) + "x" +
                                std::to_string(height) + " in its header");
@@ -141,8 +142,13 @@ PfmHeader parse_header(const std::string& bytes, const std::string& path) {
   header.width = static_cast<int>(width);
   header.height = static_cast<int>(height);
 
-  header.little_endian = parse_scale(reader.next_token("scale"), path) < 0;
-  header.data_offset = reader.data_offset_after_scale();
+  const std::vector<std::string> scale = lines.next_line("scale");
+  if (scale.size() != 1) {
+    throw InputError(path, "has " + std::to_string(scale.size()) +
+                               " fields on its scale line, expected one number");
+  }
+  header.little_endian = parse_scale(scale[0], path) < 0;
+  header.data_offset = lines.data_offset();
   return header;
 }
 
@@ -168,15 +174,16 @@ cv::Mat read_pfm(const std::string& path) {
   const std::string bytes = io_detail::read_whole_file(path);
   PfmHeader header = parse_header(bytes, path);
 
-  // Tolerate a "\r\n" after the scale (files written on Windows in text mode) only when
-  // the length proves it: then the data is exactly one byte short of the file's end.
+  check_data_length(header, bytes.size() - header.data_offset, path);
+  // Bytes after the last row mean the header describes another file than this one.
   const std::size_t needed =
       std::size_t(header.width) * std::size_t(header.height) * header.channels * 4;
-  if (header.data_offset < bytes.size() && bytes[header.data_offset - 1] == '\r' &&
-      bytes[header.data_offset] == '\n' && bytes.size() - header.data_offset == needed + 1) {
-    ++header.data_offset;
+  if (bytes.size() - header.data_offset != needed) {
+    throw InputError(path, "has " + std::to_string(bytes.size() - header.data_offset - needed) +
+                               " bytes after the " + std::to_string(header.width) + "x" +
+                               std::to_string(header.height) + "x" + std::to_string(header.channels) +
+                               " image its header describes");
   }
-  check_data_length(header, bytes.size() - header.data_offset, path);
 
   cv::Mat image(header.height, header.width, CV_MAKETYPE(CV_32F, header.channels));
   const int values_per_row = header.width * header.channels;

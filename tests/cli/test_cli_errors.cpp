@@ -98,3 +98,89 @@ TEST_F(Cli, RejectsAnOutputInAMissingFolderWithoutLeavingFiles) {
   EXPECT_NE(r.err.find(bad_output), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "no_such_dir"));
 }
+
+// ---- Defects found by trying the program with bad input (issue 33) ----------------
+
+// Integer options are read into their own type: values beyond it were wrapped modulo
+// 2^32 (--ndisp 4294967312 ran as ndisp 16).
+TEST_F(Cli, IntegerOptionsBeyondTheirTypeAreRejectedNotWrapped) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " -o " + output_;
+  for (const std::string option :
+       {"--ndisp 4294967312", "--ndisp -4294967280", "--threads 4294967297", "--median-window 4294967299",
+        "--speckle-size 4294967296", "--iterations-fine 4294967297", "--ndisp 99999999999",
+        "--seed 4294967296", "--seed -1"}) {
+    const std::string name = option.substr(0, option.find(' '));
+    expect_rejected(pair + " " + option, name);
+  }
+  const RunResult r = run_flexsight(pair + " --ndisp 99999999999", dir_);
+  EXPECT_NE(r.err.find("'99999999999'"), std::string::npos) << r.err;  // the value given, not a wrapped one
+}
+
+// NaN is never a value; infinity only where it has a documented meaning.
+TEST_F(Cli, NotANumberAndInfinityAreRejectedWhereTheyMeanNothing) {
+  const std::string pair = "stereo " + left_ + " " + right_ + " -o " + output_;
+  for (const std::string option : {"--min-depth nan", "--max-depth nan", "--min-depth inf", "--max-depth -inf",
+                                   "--min-confidence nan", "--alpha nan", "--gamma inf", "--gamma-distance nan"}) {
+    expect_rejected(pair + " " + option, option.substr(0, option.find(' ')));
+  }
+  // Documented: --gamma-distance inf turns the distance term off.
+  const RunResult off = run_flexsight(pair + " --ndisp 16 --gamma-distance inf" + quick(), dir_);
+  EXPECT_EQ(off.exit_code, 0) << off.err;
+}
+
+// OpenCV's matchers assert or fail inside on images too small for them; the sizes are
+// checked first, in our words.
+TEST_F(Cli, OpenCvMatchersRejectImagesTooSmallForThem) {
+  auto pair_of = [&](int width, int height) {
+    const std::string name = std::to_string(width) + "x" + std::to_string(height);
+    const std::string left = (dir_ / ("l" + name + ".png")).string();
+    const std::string right = (dir_ / ("r" + name + ".png")).string();
+    cv::imwrite(left, flexsight::testing_support::random_rgb8(width, height, 1));
+    cv::imwrite(right, flexsight::testing_support::random_rgb8(width, height, 2));
+    return "stereo " + left + " " + right + " -o " + output_ + " --ndisp 2";
+  };
+  // SGBM: wider than ndisp rounded up to 16 (it aborted at 1-12 px, failed at 16).
+  for (const int width : {5, 12, 16}) {
+    expect_rejected(pair_of(width, 8) + " --method sgbm", "opencv-sgbm needs images wider than");
+  }
+  // BM: its 9 x 9 block plus one each way (an internal error about SADWindowSize).
+  for (const auto& [width, height] : {std::pair{5, 5}, std::pair{64, 9}, std::pair{9, 64}}) {
+    expect_rejected(pair_of(width, height) + " --method bm", "opencv-bm needs images of at least 10 x 10");
+  }
+  // Just large enough: both run.
+  for (const char* method : {"sgbm", "bm"}) {
+    const RunResult r = run_flexsight(pair_of(17, 10) + " --method " + method, dir_);
+    EXPECT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    fs::remove(output_);
+  }
+}
+
+// --gt is read and checked before matching: a bad one used to fail after -o had been
+// written over the file that was there.
+TEST_F(Cli, ABadGroundTruthFailsBeforeAnyOutputIsWritten) {
+  const std::string existing = "the disparity that was here";
+  std::ofstream(output_) << existing;
+  const std::string wrong_size = (dir_ / "gt_small.pfm").string();
+  flexsight::write_pfm(wrong_size, cv::Mat(10, 10, CV_32FC1, cv::Scalar(3)));
+  const std::string bad_header = (dir_ / "gt_bad.pfm").string();
+  std::ofstream(bad_header) << "Pf\n64 48 7\n-1\n";
+  const std::string png = (dir_ / "disp.png").string();
+  for (const std::string& gt : {wrong_size, bad_header}) {
+    const RunResult r = run_flexsight("stereo " + left_ + " " + right_ + " -o " + output_ + " --png " + png +
+                                          " --ndisp 16 --gt " + gt + quick(),
+                                      dir_);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(gt), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(output_), existing);
+    EXPECT_FALSE(fs::exists(png));
+  }
+  fs::remove(output_);
+  expect_rejected("stereo " + left_ + " " + right_ + " -o " + output_ + " --gt-mask " + png, "--gt-mask");
+}
+
+// An empty or malformed scene selection ran every scene.
+TEST_F(Cli, AnEmptySceneSelectionIsAnError) {
+  for (const std::string selection : {"','", "''", "'A,,B'", "'A,'"}) {
+    expect_rejected("eval " + dir_.string() + " --scenes " + selection, "--scenes");
+  }
+}

@@ -117,6 +117,20 @@ TEST(EvalCommand, ScoresResultFilesEndToEnd) {
   }
 }
 
+// A result with no disparity at all has no average error: "n/a" and null, not 0.000
+// (issue 33: it read as a perfect score).
+TEST(EvalCommand, AResultWithoutAnyDisparityHasNoAverageError) {
+  EvalTree tree;
+  write_pfm_by_hand(tree.results / "Beta" / "disp0PPMS.pfm", rows_to_mat({{kNaN, kNaN}, {kNaN, kNaN}}));
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(run_eval_command(tree.args({"--scenes", "Beta"})), 0);
+  const std::string printed = testing::internal::GetCapturedStdout();
+  const std::string json_text = read_file(tree.out / "report.json");
+  EXPECT_NE(json_text.find("\"avg_error\": null"), std::string::npos) << json_text;
+  EXPECT_NE(printed.find("n/a"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("0.000"), std::string::npos) << printed;
+}
+
 TEST(EvalCommand, SceneSelectionAndMaxDispColor) {
   const EvalTree tree;
   testing::internal::CaptureStdout();

@@ -87,6 +87,25 @@ TEST(EvaluateDisparity, InfiniteResultIsMissing) {
   EXPECT_DOUBLE_EQ(all.density_percent, 50.0);
 }
 
+TEST(EvaluateDisparity, NoResultAtAllHasNoAverageError) {
+  // Ground truth everywhere, no result anywhere: every pixel bad, density 0, and the
+  // average error undefined (NaN, "n/a" in reports) rather than a perfect 0.
+  const cv::Mat gt = rows_to_mat({{3, 4, 5}});
+  const ErrorStats all = evaluate_disparity(rows_to_mat({{kNaN, kNaN, kNaN}}), gt, cv::Mat()).all;
+  EXPECT_EQ(all.evaluated, 3);
+  for (double percent : all.bad_percent) EXPECT_DOUBLE_EQ(percent, 100.0);
+  EXPECT_DOUBLE_EQ(all.density_percent, 0.0);
+  EXPECT_TRUE(std::isnan(all.avg_error));
+}
+
+TEST(AverageStats, AveragesTheErrorOverScenesThatHaveOne) {
+  ErrorStats a, b;
+  a.avg_error = 1.5;
+  b.avg_error = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_DOUBLE_EQ(average({a, b}).avg_error, 1.5);
+  EXPECT_TRUE(std::isnan(average({b, b}).avg_error));
+}
+
 TEST(EvaluateDisparity, EmptyMaskMeansEverythingNonOccluded) {
   const HandCase c;
   const SceneScores scores = evaluate_disparity(c.disparity, c.gt, cv::Mat());

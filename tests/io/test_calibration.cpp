@@ -159,6 +159,43 @@ TEST(Calibration, MiddleburyRejectsMalformedValues) {
                                  "key 'ndisp' appears more than once"));
 }
 
+// Found by trying bad files (issue 33): values no rectified pair can have were taken.
+TEST(Calibration, MiddleburyRejectsWhatCannotBeARectifiedPair) {
+  ScratchDir dir;
+  struct Case {
+    const char* key;
+    const char* line;
+    const char* problem;
+  };
+  const Case cases[] = {
+      {"doffs", "doffs=1e300", "key 'doffs' is 1e+300, but cam1's cx - cam0's cx is 32.778"},
+      {"doffs", "doffs=40", "key 'doffs' is 40"},
+      {"cam1", "cam1=[1000 0 326.96; 0 1000 252.932; 0 0 1]", "key 'cam1' has focal length 1000, cam0 999.421"},
+      {"cam1", "cam1=[999.421 0 326.96; 0 999.421 260; 0 0 1]", "key 'cam1' has its principal point on row 260"},
+      {"cam0", "cam0=[999.421 0 294.182; 0 990 252.932; 0 0 1]", "key 'cam0' has fx 999.421 and fy 990"},
+      {"cam0", "cam0=[999.421 1 294.182; 0 999.421 252.932; 0 0 1]", "key 'cam0' is not a pinhole matrix"},
+      {"cam1", "cam1=[999.421 0 326.96; 0 999.421 252.932; 0 0 2]", "key 'cam1' is not a pinhole matrix"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.file(std::string("pair_") + c.key + ".txt");
+    write_bytes(path, motorcycle_calib_with(c.key, c.line));
+    EXPECT_TRUE(throws_input_error([&] { flexsight::read_middlebury_calib(path); }, path, c.problem)) << c.line;
+  }
+}
+
+TEST(Calibration, KittiRejectsWhatCannotBeARectifiedPair) {
+  ScratchDir dir;
+  const std::string focal = dir.file("focal.txt");
+  write_bytes(focal, "P0: 700 0 600 0 0 700 180 0 0 0 1 0\nP1: 720 0 600 -380 0 720 180 0 0 0 1 0\n");
+  EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(focal); }, focal, "P1 has focal length 720, P0 700"));
+  const std::string row = dir.file("row.txt");
+  write_bytes(row, "P0: 700 0 600 0 0 700 180 0 0 0 1 0\nP1: 700 0 600 -380 0 700 190 0 0 0 1 0\n");
+  EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(row); }, row, "principal point on row 190"));
+  const std::string square = dir.file("square.txt");
+  write_bytes(square, "P0: 700 0 600 0 0 650 180 0 0 0 1 0\nP1: 700 0 600 -380 0 650 180 0 0 0 1 0\n");
+  EXPECT_TRUE(throws_input_error([&] { flexsight::read_kitti_calib(square); }, square, "P0 has fx 700 and fy 650"));
+}
+
 TEST(Calibration, MiddleburyRejectsMissingAndEmptyFiles) {
   ScratchDir dir;
   const std::string missing = dir.file("calib.txt");

@@ -93,7 +93,7 @@ TEST(Pfm, ReadsBigEndianThreeChannelFile) {
   EXPECT_EQ(loaded.at<cv::Vec3f>(0, 0), cv::Vec3f(0.5f, 1e6f, -kInf));
 }
 
-TEST(Pfm, HeaderToleratesCommentsAndExtraWhitespace) {
+TEST(Pfm, HeaderFieldsMayStandBetweenSpacesAndTabs) {
   ScratchDir dir;
   const std::string path = dir.file("spaced.pfm");
   // Exactly one whitespace byte after the scale: the data's first byte is 0x20 (a
@@ -104,11 +104,51 @@ TEST(Pfm, HeaderToleratesCommentsAndExtraWhitespace) {
     std::memcpy(&v, &bits, sizeof v);
     return v;
   }();
-  write_bytes(path, "Pf\n# written by hand\n  2\t  1 \n\n-1.0\n" + floats_le({space_first, 7.0f}));
+  write_bytes(path, "Pf\n  2\t  1 \n-1.0\n" + floats_le({space_first, 7.0f}));
   const cv::Mat loaded = flexsight::read_pfm(path);
   ASSERT_EQ(loaded.size(), cv::Size(2, 1));
   EXPECT_EQ(loaded.at<float>(0, 0), space_first);
   EXPECT_EQ(loaded.at<float>(0, 1), 7.0f);
+}
+
+TEST(Pfm, ReadsHeaderLinesEndedByCarriageReturnAndNewline) {
+  ScratchDir dir;
+  const std::string path = dir.file("windows.pfm");
+  // 0x0A as the first data byte: the data starts right after the scale line's "\r\n".
+  const float newline_first = [] {
+    const std::uint32_t bits = 0x3F80000Au;
+    float v;
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
+  }();
+  write_bytes(path, "Pf\r\n1 1\r\n-1\r\n" + floats_le({newline_first}));
+  EXPECT_EQ(flexsight::read_pfm(path).at<float>(0, 0), newline_first);
+}
+
+// Found by trying bad files (issue 33): tokens on the wrong line were taken for others,
+// and bytes after the data were ignored.
+TEST(Pfm, RejectsHeadersThatAreNotThreeExactLines) {
+  ScratchDir dir;
+  struct Case {
+    const char* name;
+    std::string bytes;
+    const char* expected;
+  };
+  const std::string data_64x48 = std::string(64 * 48 * 4, '\0');
+  const std::vector<Case> cases = {
+      {"three_on_size_line.pfm", "Pf\n64 48 7\n-1\n" + data_64x48, "3 fields on its size line"},
+      {"junk_after_scale.pfm", "Pf\n64 48\n-1 junk\n" + data_64x48, "2 fields on its scale line"},
+      {"one_on_size_line.pfm", "Pf\n64\n48\n-1\n" + data_64x48, "1 fields on its size line"},
+      {"comment.pfm", "Pf\n# by hand\n64 48\n-1\n" + data_64x48, "fields on its size line"},
+      {"blank_line.pfm", "Pf\n64 48\n\n-1\n" + data_64x48, "0 fields on its scale line"},
+      {"magic_with_more.pfm", "Pf 64 48\n-1\n" + data_64x48, "is not a PFM file"},
+      {"trailing_bytes.pfm", "Pf\n64 48\n-1\n" + data_64x48 + "xyz", "has 3 bytes after the 64x48x1 image"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.file(c.name);
+    write_bytes(path, c.bytes);
+    EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(path); }, path, c.expected)) << c.name;
+  }
 }
 
 TEST(Pfm, ReadsMiddleburyGroundTruth) {
@@ -159,7 +199,7 @@ TEST(Pfm, RejectsBadMagic) {
   const std::string path = dir.file("color.pfm");
   write_bytes(path, "P6\n2 2\n255\n" + std::string(12, '\x7f'));
   EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(path); }, path,
-                                 "is not a PFM file (magic 'P6'"));
+                                 "is not a PFM file (first line 'P6'"));
 }
 
 TEST(Pfm, RejectsNonPositiveAndMalformedDimensions) {
@@ -193,11 +233,11 @@ TEST(Pfm, RejectsIncompleteHeader) {
   const std::string short_header = dir.file("short.pfm");
   write_bytes(short_header, "Pf\n2");
   EXPECT_TRUE(throws_input_error([&] { flexsight::read_pfm(short_header); }, short_header,
-                                 "header ends before the height"));
+                                 "header ends before the end of its size line"));
   const std::string no_data = dir.file("nodata.pfm");
   write_bytes(no_data, "Pf\n2 2\n-1");
   EXPECT_TRUE(
-      throws_input_error([&] { flexsight::read_pfm(no_data); }, no_data, "header ends without"));
+      throws_input_error([&] { flexsight::read_pfm(no_data); }, no_data, "header ends before the end of its scale line"));
 }
 
 TEST(Pfm, WriteRejectsUnsupportedTypes) {
