@@ -13,6 +13,10 @@
 
 namespace flexsight {
 
+// The T-LESS CAD folder of the detection data ($FLEXSIGHT_DETECTION_DATA/cad/tless, or
+// the build's default), where pose and pick look when no --cad is given.
+std::string default_pose_cad_dir();
+
 // The pinhole camera of a BOP image (its K and size).
 PinholeCamera camera_of(const AnnotatedImage& image);
 

@@ -40,6 +40,9 @@ class BadInputMatrix : public Cli {
     write("doffs_calib.txt",
           "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[100 0 34; 0 100 24; 0 0 1]\ndoffs=1e300\nbaseline=100\n"
           "width=64\nheight=48\nndisp=16\n");
+    write("wide_calib.txt",  // for 640 x 400 images: not a uniform resize of 64 x 48
+          "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[100 0 34; 0 100 24; 0 0 1]\ndoffs=4\nbaseline=100\n"
+          "width=640\nheight=400\nndisp=16\n");
     write("focal_calib.txt",
           "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[120 0 34; 0 120 24; 0 0 1]\ndoffs=4\nbaseline=100\n"
           "width=64\nheight=48\nndisp=16\n");
@@ -137,6 +140,23 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
            "existing.json --templates " + d + "junk.tpl -o " + d + "existing.json",
        d + "junk.tpl"},
       {"eval-pose " + d + "nowhere --results " + d + "poses.csv --out " + d + "pose_out", d + "nowhere"},
+      // pick
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt -o " + d + "existing.json", "--templates"},
+      {"pick " + d + "left.png " + d + "tiny_r.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "tiny_r.png"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "wide_calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "wide_calib.txt"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "doffs_calib.txt --templates " + d + "junk.tpl -o " +
+           d + "existing.json",
+       d + "doffs_calib.txt"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --model " +
+           d + "junk.onnx -o " + d + "existing.json",
+       d + "junk.onnx"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "junk.tpl"},
   };
   ASSERT_GE(cases.size(), 30u);
   for (const Case& c : cases) expect_refused(c.arguments, c.must_mention);
