@@ -289,8 +289,10 @@ std::vector<std::pair<std::string, std::string>> stereo_param_values(const Stere
 std::string stereo_params_help() {
   std::ostringstream out;
   out << "  --preset NAME                 speed/accuracy settings: accurate (default) or fast\n"
-         "                                (window steps and iterations; the options below\n"
-         "                                override it)\n";
+         "                                (window steps and iterations), or active for\n"
+         "                                projector-lit scenes (accurate, with higher cost\n"
+         "                                truncations and an 8-px left/right tolerance); the\n"
+         "                                options below override it\n";
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
     // A name too long for the column gets its help on the next line, as --device's does.
