@@ -131,10 +131,15 @@ SpeedKnobs fast_preset() { return {3, 5, 6, 1, 1}; }
 //   the right view's disparities there are several pixels off and a 1-px check sends the
 //   walls to the background fill: bin00 3 px 33.1 %, 8 px 28.1 %, no check (1000 px)
 //   28.2 % with a larger average error; bin01 3 px 35.5 %, 8 px 30.6 %.
+// * Every consistent pixel votes in the hole median (median_background_margin inf):
+//   here most holes are not background but the sides of parts that the right camera does
+//   not see and the walls, and the background bound kept their own surface out: bin00
+//   28.1 -> 24.5 %, bin01 30.6 -> 26.2 %, every class gaining on both.
 struct ActiveCost {
   float tau_color = 100.0f;
   float tau_gradient = 50.0f;
   float lr_tolerance = 8.0f;
+  float median_background_margin = INFINITY;
 };
 
 }  // namespace
@@ -151,6 +156,7 @@ bool apply_stereo_preset(const std::string& name, StereoParams& params) {
     params.tau_color = active.tau_color;
     params.tau_gradient = active.tau_gradient;
     params.lr_tolerance = active.lr_tolerance;
+    params.median_background_margin = active.median_background_margin;
   } else {
     return false;
   }
