@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Bad-2 and average error of disparity results on the projector-lit bins, split into
-all / non-occluded / parts / floor pixels (docs/stereo.md, "Projector-lit bins").
+all / non-occluded / parts / floor / walls pixels (docs/stereo.md, "Projector-lit bins").
 
 usage: scripts/stereo/bins_figures.py SCENE_DIR DISP.pfm [DISP.pfm ...]
        scripts/stereo/bins_figures.py --eval DATASET_ROOT EVAL_OUT [--scenes a,b]
