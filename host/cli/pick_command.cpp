@@ -43,7 +43,8 @@ void print_help() {
          "  --score S          detections scoring above S are posed (default 0.3)\n"
          "  --threads N        parts posed at once (default: all cores)\n"
          "  --quiet            no progress lines\n"
-         "  --ndisp N and the stereo parameters of flexsight stereo (--preset ...);\n"
+         "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"
+         "                     projector-lit pairs) unless another --preset is given\n"
       << backend_options_help();
 }
 
@@ -100,6 +101,8 @@ int run_pick_command(std::vector<std::string> args) {
   if (auto code = usage_exit_code(args, print_help)) return *code;
   PickSettings settings;
   const bool ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();
+  // The camera's own scene is projector-lit: the active preset unless one is named.
+  if (std::find(args.begin(), args.end(), "--preset") == args.end()) apply_stereo_preset("active", settings.stereo);
   consume_stereo_params(args, settings.stereo);
   settings.backend = take_backend_options(args);
   const std::string calib_option = take_option(args, "--calib");

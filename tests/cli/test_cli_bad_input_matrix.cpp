@@ -17,16 +17,6 @@ using namespace flexsight::cli_test_support;
 
 namespace {
 
-// Every file under `dir` with its bytes.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    const std::string name = fs::relative(entry.path(), dir).string();
-    files[name] = entry.is_regular_file() ? slurp(entry.path()) : std::string("<folder>");
-  }
-  return files;
-}
-
 class BadInputMatrix : public Cli {
  protected:
   void SetUp() override {
