@@ -1,6 +1,7 @@
 #include "host/sensor/plan_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -34,6 +35,9 @@ std::string fmt(const char* format, double a, double b, double c) {
   std::snprintf(text, sizeof text, format, a, b, c);
   return text;
 }
+
+// No "-0.0" for a value that is zero up to rounding (the centred near-plane disparity).
+double clean(double value) { return std::abs(value) < 1e-6 ? 0.0 : value; }
 
 std::string devices_text(unsigned seen) {
   std::string text;
@@ -102,7 +106,7 @@ std::vector<Section> sections(const SensorPlan& p) {
 
   out.push_back({"Disparity range", {
       {"f B / Z", fmt("%.1f (near) .. %.1f (far) px", p.raw_disparity_near, p.raw_disparity_far)},
-      {"with doffs (f B / Z - doffs)", fmt("%.1f (near) .. %.1f (far) px", p.disparity_near, p.disparity_far)},
+      {"with doffs (f B / Z - doffs)", fmt("%.1f (near) .. %.1f (far) px", clean(p.disparity_near), clean(p.disparity_far))},
       {"matcher (searches 0..ndisp-1)",
        fmt("ndisp %.0f once the pair is shifted by %.0f px to doffs ", p.ndisp, p.matcher_shift_px) +
            fmt("%.1f px (far plane at disparity >= 0)", p.rig.doffs_px + p.matcher_shift_px)},
