@@ -201,7 +201,7 @@ int run_sensor_plan_command(std::vector<std::string> args) {
   if (plan.coverage.volume.all <= 0.0) {
     throw InputError("working volume (--volume, --distance)",
                      "no part of it is seen by both cameras and the projector; check --focal/--hfov, "
-                     "--baseline and --projector-fov");
+                     "--doffs, --baseline and --projector-fov");
   }
   if (!output.empty()) {
     StagedFolder staged(output, overwrite, "-o");

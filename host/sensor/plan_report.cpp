@@ -67,7 +67,10 @@ std::vector<Section> sections(const SensorPlan& p) {
                       fmt(", pixel %.2f um (sensor %.2f x %.2f mm)", um, px_to_mm(in.width, um),
                           px_to_mm(in.height, um))},
       {"focal length", fmt("%.1f px = %.2f mm", p.rig.focal_px, p.focal_mm) +
-                           (p.focal_fitted ? " (the largest at which the volume fits both images)" : "")},
+                           (p.focal_fitted ? (p.doffs_centred ? " (the largest at which the volume fits both images)"
+                                                : " (the largest at which the volume fits both images with the "
+                                                  "centring doffs, not necessarily with this one)")
+                            : "")},
       {"field of view", fmt("%.2f x %.2f deg", p.hfov_deg, p.vfov_deg)},
       {"volume fits both images up to", fmt("f = %.1f px = %.2f mm", p.fitting_focal_px,
                                                px_to_mm(p.fitting_focal_px, um))},

@@ -137,6 +137,11 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
            "existing.json --templates " + d + "junk.tpl -o " + d + "existing.json",
        d + "junk.tpl"},
       {"eval-pose " + d + "nowhere --results " + d + "poses.csv --out " + d + "pose_out", d + "nowhere"},
+      // sensor planning
+      {"sensor-plan --baseline 0 -o " + d + "plan_out", "--baseline"},
+      {"sensor-plan --hfov 180 -o " + d + "plan_out", "--hfov"},
+      {"sensor-plan --volume 600x400 -o " + d + "plan_out", "--volume"},
+      {"sensor-plan -o " + d + "existing.png", d + "existing.png"},
   };
   ASSERT_GE(cases.size(), 30u);
   for (const Case& c : cases) expect_refused(c.arguments, c.must_mention);

@@ -70,6 +70,17 @@ TEST_F(SensorPlanCli, DefaultsAreThePaperCameraAndWriteTheFourFiles) {
   EXPECT_NE(slurp(out_ / "report.md").find("| volume | 100.0 %"), std::string::npos);
 }
 
+TEST_F(SensorPlanCli, HelpListsTheOptions) {
+  RunResult r = run_flexsight("sensor-plan --help", dir_);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("usage: flexsight sensor-plan"), std::string::npos) << r.out;
+  for (const char* option : {"--baseline", "--distance", "--focal", "--hfov", "--size", "--pixel-um", "--doffs",
+                             "--projector-fov", "--projector-offset", "--volume", "--subpixel", "--grid"}) {
+    EXPECT_NE(r.out.find(option), std::string::npos) << option;
+  }
+  expect_nothing_written();
+}
+
 TEST_F(SensorPlanCli, WithoutOutputFolderOnlyPrints) {
   RunResult r = run_flexsight("sensor-plan --hfov 40 --subpixel 1/4", dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
