@@ -54,6 +54,20 @@ std::string region_text(const RegionCoverage& r) {
          fmt("P %.1f, both cameras %.1f)", r.projector, r.cameras);
 }
 
+// One line on whether the volume fits: the samples inside, then the box's surface (its
+// faces and corners can leave a frustum while every cell centre is still inside).
+std::string verdict(const VolumeCoverage& c) {
+  if (c.any_unseen) {
+    return fmt("the volume does NOT fit: %.1f %% of it is not seen by all three", 100.0 - c.volume.all);
+  }
+  bool surface_seen = true;
+  for (const RegionCoverage& f : c.faces) surface_seen = surface_seen && f.all >= 100.0;
+  for (const CornerCoverage& k : c.corners) surface_seen = surface_seen && k.seen == kSeenByAll;
+  return surface_seen ? std::string("the whole volume is seen by all three")
+                      : std::string("the inside is seen by all three, parts of the box's surface are not "
+                                    "(faces, corners)");
+}
+
 // The figures once, in the order both text forms print them.
 std::vector<Section> sections(const SensorPlan& p) {
   const SensorPlanInputs& in = p.inputs;
@@ -84,6 +98,7 @@ std::vector<Section> sections(const SensorPlan& p) {
 
   const VolumeCoverage& c = p.coverage;
   Section coverage{"Coverage (seen by C1, C2 and P)", {
+      {"verdict", verdict(c)},
       {"volume", region_text(c.volume)},
       {"grid", fmt("%.1f mm step: %.0f samples", c.step_mm, static_cast<double>(c.volume.samples)) +
                    " (" + std::to_string(c.nx) + " x " + std::to_string(c.ny) + " x " +
