@@ -147,6 +147,11 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
            "existing.json",
        d + "junk.tpl"},
+      // sensor planning
+      {"sensor-plan --baseline 0 -o " + d + "plan_out", "--baseline"},
+      {"sensor-plan --hfov 180 -o " + d + "plan_out", "--hfov"},
+      {"sensor-plan --volume 600x400 -o " + d + "plan_out", "--volume"},
+      {"sensor-plan -o " + d + "existing.png", d + "existing.png"},
   };
   ASSERT_GE(cases.size(), 30u);
   for (const Case& c : cases) expect_refused(c.arguments, c.must_mention);
