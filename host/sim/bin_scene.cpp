@@ -115,7 +115,7 @@ ShadingOptions room_lighting(const BinSimSettings& settings, const StereoRig& ri
     options.lights.push_back(light);
   }
   options.ambient = float(settings.ambient);
-  options.shadow_samples = 4;
+  options.shadow_samples = 8;
   options.seed = seed;
   options.threads = settings.threads;
   return options;
