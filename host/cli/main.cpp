@@ -19,7 +19,7 @@ void print_usage() {
                "  eval-pose DATASET --results POSES.csv --out DIR  score 6D poses (BOP: ADD(-S), AR)\n"
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
-               "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
+               "  synth full|semi|patches|merge|bin ...     synthetic training data (BOP + COCO), stereo bins\n"
                "  detect IMAGE... [-o DETS.json] [options]  find the parts in images (SSD detector)\n"
                "  pose DATASET --gt-boxes --templates T --out DIR  6D poses of parts (D2CO + ICP)\n"
                "  pose-templates CAD_DIR -o TEMPLATES       edge templates of the parts, for pose\n"

@@ -120,6 +120,10 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"render " + cad + "/obj_01.stl -o " + d + "existing.png --size 0x10", "--size"},
       {"synth full --count 0 -o " + d + "synth_out", "--count"},
       {"synth full --count 1 --cad " + d + "nowhere -o " + d + "synth_out", d + "nowhere"},
+      {"synth bin --count 0 -o " + d + "bins_out", "--count"},
+      {"synth bin --count 1 --baseline -1 -o " + d + "bins_out", "--baseline"},
+      {"synth bin --count 1 --bin 600x400x100 -o " + d + "bins_out", "--bin"},
+      {"synth bin --count 1 --cad " + d + "nowhere -o " + d + "bins_out", d + "nowhere"},
       // detection
       {"detect " + d + "nope.png -o " + d + "existing.json", d + "nope.png"},
       {"detect " + d + "left.png --model " + d + "junk.onnx -o " + d + "existing.json", d + "junk.onnx"},
