@@ -24,16 +24,6 @@ constexpr double kVisibilityToleranceMm = 5.0;
 
 }  // namespace
 
-PinholeCamera left_camera(const StereoCamera& rig, cv::Size size) {
-  PinholeCamera camera;
-  camera.fx = camera.fy = rig.Q(2, 3);
-  camera.cx = -rig.Q(0, 3);
-  camera.cy = -rig.Q(1, 3);
-  camera.width = size.width;
-  camera.height = size.height;
-  return camera;
-}
-
 struct PickPipeline::Impl {
   PickSettings settings;
   ComputeBackend compute;

@@ -63,7 +63,5 @@ class PickPipeline {
   std::unique_ptr<Impl> impl_;
 };
 
-// The pinhole camera of the left view of a rectified rig (its Q), for images of `size`.
-PinholeCamera left_camera(const StereoCamera& rig, cv::Size size);
 
 }  // namespace flexsight
