@@ -24,6 +24,7 @@ void print_usage() {
                "  pose DATASET --gt-boxes --templates T --out DIR  6D poses of parts (D2CO + ICP)\n"
                "  pose-templates CAD_DIR -o TEMPLATES       edge templates of the parts, for pose\n"
                "  pick LEFT RIGHT --calib C --templates T   stereo, detection, poses: the parts ranked for a robot\n"
+               "  eval-pick BINS_DIR --out DIR --templates T  pick on simulated bins, scored against their truth\n"
                "  sensor-plan [options] [-o DIR]            camera/projector placement: coverage, depth resolution\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
     if (command == "detect") return flexsight::run_detect_command(args);
     if (command == "pose") return flexsight::run_pose_command(args);
     if (command == "pick") return flexsight::run_pick_command(args);
+    if (command == "eval-pick") return flexsight::run_eval_pick_command(args);
     if (command == "pose-templates") return flexsight::run_pose_templates_command(args);
     if (command == "sensor-plan") return flexsight::run_sensor_plan_command(args);
     if (command == "--help" || command == "-h" || command == "help") {

@@ -10,6 +10,7 @@
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
+#include "host/cli/pick_options.h"
 #include "host/cli/pick_outputs.h"
 #include "host/cli/pick_pipeline.h"
 #include "host/cli/pose_inputs.h"
@@ -26,35 +27,31 @@ namespace {
 namespace fs = std::filesystem;
 
 void print_help() {
-  std::cout
-      << "usage: flexsight pick LEFT RIGHT --calib C --templates T [options]\n"
-         "       flexsight pick SCENE_DIR --templates T [options]   (im0.png, im1.png, calib.txt)\n"
-         "Stereo depth of the rectified pair, the parts detected in the left image, the 6D pose\n"
-         "of each, and the parts ranked for a robot to take (best first).\n"
-         "  --calib C          the pair's calibration (Middlebury calib.txt, KITTI, OpenCV\n"
-         "                     YAML/XML with Q); ndisp from a calib.txt unless --ndisp\n"
-         "  --templates T      the parts' edge templates (flexsight pose-templates CAD_DIR -o T)\n"
-         "  --cad DIR          the CAD models the templates were made from (default:\n"
-         "                     " << default_pose_cad_dir() << ")\n"
-         "  --model M.onnx     the detector (default: the shipped one, "
-      << default_detector_model_path() << ")\n"
-         "  -o PICKS.json      the ranked parts (docs/pick.md); without it a table only\n"
-         "  --png P.png        the left image with the boxes and the parts' outlines\n"
-         "  --score S          detections scoring above S are posed (default 0.3)\n"
-         "  --threads N        parts posed at once (default: all cores)\n"
-         "  --quiet            no progress lines\n"
-         "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"
-         "                     projector-lit pairs) unless another --preset is given\n"
-      << backend_options_help();
+  std::cout << "usage: flexsight pick LEFT RIGHT --calib C --templates T [options]\n"
+               "       flexsight pick SCENE_DIR --templates T [options]   (im0.png, im1.png, calib.txt,\n"
+               "                                                           im0_passive.png if there)\n"
+               "Stereo depth of the rectified pair, the parts detected in the left image, the 6D pose\n"
+               "of each, and the parts ranked for a robot to take (best first).\n"
+               "  --calib C          the pair's calibration (Middlebury calib.txt, KITTI, OpenCV\n"
+               "                     YAML/XML with Q); ndisp from a calib.txt unless --ndisp\n"
+               "  -o PICKS.json      the ranked parts (docs/pick.md); without it a table only\n"
+               "  --png P.png        the left image with the boxes and the parts' outlines\n"
+               "  --passive-left P   the left view with the projector off (the same size): detection\n"
+               "                     and the pose's edges use it; the dots hide parts from the\n"
+               "                     detector and are edges themselves\n"
+            << pick_options_help();
 }
 
 struct PickInputs {
   std::string left, right, calib;
+  std::string passive_left;  // empty: none
 };
 
-PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const std::string& calib) {
+PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const std::string& calib,
+                               const std::string& passive_left) {
   PickInputs inputs;
   inputs.calib = calib;
+  inputs.passive_left = passive_left;
   if (positional.size() == 2) {
     inputs.left = positional[0];
     inputs.right = positional[1];
@@ -63,6 +60,9 @@ PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const
     inputs.left = (scene / "im0.png").string();
     inputs.right = (scene / "im1.png").string();
     if (inputs.calib.empty()) inputs.calib = (scene / "calib.txt").string();
+    if (inputs.passive_left.empty() && fs::is_regular_file(scene / "im0_passive.png")) {
+      inputs.passive_left = (scene / "im0_passive.png").string();
+    }
   } else {
     throw InputError("pick", positional.size() == 1 ? positional[0] + " is not a scene folder (and no right image was given)"
                                                     : "expected LEFT RIGHT or one scene folder, got " +
@@ -99,30 +99,14 @@ void print_table(const PickResult& result) {
 
 int run_pick_command(std::vector<std::string> args) {
   if (auto code = usage_exit_code(args, print_help)) return *code;
-  PickSettings settings;
-  const bool ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();
-  // The camera's own scene is projector-lit: the active preset unless one is named.
-  if (std::find(args.begin(), args.end(), "--preset") == args.end()) apply_stereo_preset("active", settings.stereo);
-  consume_stereo_params(args, settings.stereo);
-  settings.backend = take_backend_options(args);
+  PickOptions options = take_pick_options(args);
+  PickSettings& settings = options.settings;
   const std::string calib_option = take_option(args, "--calib");
-  settings.templates = take_option(args, "--templates");
-  settings.cad = take_option(args, "--cad");
-  settings.model = resolve_detector_model_path(take_option(args, "--model"));
   const std::string output = take_option(args, "-o");
   const std::string png = take_option(args, "--png");
-  const double score = take_number_option(args, "--score", 0.3);
-  const std::string threads = take_option(args, "--threads");
-  settings.quiet = take_flag(args, "--quiet");
+  const std::string passive_left = take_option(args, "--passive-left");
   reject_unknown_options(args);
-  if (!(score >= 0.0 && score <= 1.0)) throw InputError("option --score", "must lie in [0, 1]");
-  settings.detector.score_threshold = static_cast<float>(score);
-  if (!threads.empty()) settings.threads = static_cast<int>(parse_whole_number("--threads", threads, 1, 1024));
-  if (settings.templates.empty()) {
-    throw InputError("option --templates", "missing (make them once with flexsight pose-templates CAD_DIR -o FILE)");
-  }
-  if (settings.cad.empty()) settings.cad = default_pose_cad_dir();
-  const PickInputs inputs = resolve_pick_inputs(args, calib_option);
+  const PickInputs inputs = resolve_pick_inputs(args, calib_option, passive_left);
   check_output_folder(output, "-o");
   check_output_folder(png, "--png");
 
@@ -130,21 +114,25 @@ int run_pick_command(std::vector<std::string> args) {
   // it, the stereo parameters, then the detector, templates and CAD models.
   const StereoPair pair = load_stereo_pair(inputs.left, inputs.right);
   const StereoCamera rig = read_stereo_camera(inputs.calib).resized_to(pair.left.cols, pair.left.rows);
-  if (!ndisp_given) {
-    try {
-      settings.stereo.ndisp = read_middlebury_calib(inputs.calib).ndisp;
-    } catch (const InputError&) {
-      throw InputError("option --ndisp", "missing: " + inputs.calib + " gives no disparity range");
+  cv::Mat passive;
+  if (!inputs.passive_left.empty()) {
+    passive = load_rgb8(inputs.passive_left);
+    if (passive.size() != pair.left.size()) {
+      throw InputError(inputs.passive_left, "is " + std::to_string(passive.cols) + "x" + std::to_string(passive.rows) +
+                                                ", the pair " + std::to_string(pair.left.cols) + "x" +
+                                                std::to_string(pair.left.rows) + ": not the left view without the pattern");
     }
   }
+  settings.stereo.ndisp = pick_ndisp(options, inputs.calib);
   validate_inputs(pair.left, pair.right, settings.stereo);
   PickPipeline pipeline(settings);
   if (!settings.quiet) std::cerr << "pick: " << pair.left.cols << "x" << pair.left.rows << ", ndisp " << settings.stereo.ndisp << "\n";
 
-  const PickResult result = pipeline.run(pair.left, pair.right, rig);
+  const PickResult result = pipeline.run(pair.left, pair.right, rig, passive);
   if (!output.empty()) {
     const std::string json =
-        pick_json(result, {inputs.left, inputs.right, inputs.calib, settings.model, settings.templates, settings.cad});
+        pick_json(result, {inputs.left, inputs.right, inputs.calib, settings.model, settings.templates, settings.cad,
+                           inputs.passive_left});
     write_atomically(output, [&](const std::string& tmp) {
       std::ofstream out(tmp);
       out << json;
@@ -153,7 +141,7 @@ int run_pick_command(std::vector<std::string> args) {
   }
   if (!png.empty()) write_image(png, [&] {
     cv::Mat rgb;
-    cv::cvtColor(pick_picture(pair.left, result, pipeline.models()), rgb, cv::COLOR_BGR2RGB);
+    cv::cvtColor(pick_picture(passive.empty() ? pair.left : passive, result, pipeline.models()), rgb, cv::COLOR_BGR2RGB);
     return rgb;
   }());
   print_table(result);

@@ -34,7 +34,8 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
   const PickStageSeconds& s = result.seconds;
   Json document = {
       {"inputs", {{"left", inputs.left}, {"right", inputs.right}, {"calib", inputs.calib}, {"model", inputs.model},
-                  {"templates", inputs.templates}, {"cad", inputs.cad}}},
+                  {"templates", inputs.templates}, {"cad", inputs.cad},
+                  {"passive_left", inputs.passive_left.empty() ? Json(nullptr) : Json(inputs.passive_left)}}},
       {"image_size", {result.disparity.cols, result.disparity.rows}},
       {"camera", {{"fx", result.camera.fx}, {"fy", result.camera.fy}, {"cx", result.camera.cx}, {"cy", result.camera.cy}}},
       {"frame", "left camera: x right, y down, z forward, mm; R row-major maps model to camera"},
@@ -42,6 +43,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
       {"detector", result.detector_path},
       {"floor_depth_mm", result.floor_depth_mm},
       {"detections", result.detections.size()},
+      {"detection_tiles", {{"tile", result.detection_tiling.tile}, {"stride", result.detection_tiling.stride}}},
       {"seconds", {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
                    {"ranking", s.ranking}, {"total", s.total()}}},
       {"picks", picks}};

@@ -9,6 +9,7 @@ namespace flexsight {
 
 struct PickInputsDescription {
   std::string left, right, calib, model, templates, cad;
+  std::string passive_left;  // empty: none given
 };
 
 // The JSON document of a pick (docs/pick.md, "PICKS.json").

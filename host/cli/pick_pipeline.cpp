@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -48,10 +49,45 @@ struct PickPipeline::Impl {
 };
 
 PickPipeline::PickPipeline(const PickSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+
+void PickPipeline::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
+
+cv::Mat PickPipeline::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
+  return impl_->stereo.run(left_rgb8, right_rgb8, impl_->settings.stereo, ProgressCallback(), nullptr).disparity;
+}
+
+TilingPlan PickPipeline::detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const {
+  const PickSettings& settings = impl_->settings;
+  if (settings.detection_tile == 0) return {};
+  if (settings.detection_tile > 0) {
+    const int tile = settings.detection_tile;
+    return {tile, std::max(1, tile * 3 / 4)};
+  }
+  // A part's size in pixels: f x diameter / depth, at the median measured depth (the
+  // bin's floor and the parts on it).
+  std::vector<float> depths;
+  depths.reserve(depth_mm.total());
+  for (auto it = depth_mm.begin<float>(); it != depth_mm.end<float>(); ++it) {
+    if (*it > 0.0f) depths.push_back(*it);
+  }
+  if (depths.empty()) return {};
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  const double depth = depths[depths.size() / 2];
+  std::vector<double> diameters;
+  for (const DetectorLabel& label : impl_->detector.labels()) {
+    diameters.push_back(impl_->models.mesh(label.category_id).diameter);
+  }
+  std::sort(diameters.begin(), diameters.end());
+  const double focal = camera.fx;
+  return tiling_for_part_sizes(image, focal * diameters[diameters.size() / 2] / depth,
+                               focal * diameters.back() / depth);
+}
 PickPipeline::~PickPipeline() = default;
 const PoseModels& PickPipeline::models() const { return impl_->models; }
+const SsdDetector& PickPipeline::detector() const { return impl_->detector; }
 
-PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig) {
+PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
+                             const cv::Mat& texture_left_rgb8) {
   const PickSettings& settings = impl_->settings;
   PickResult result;
   result.camera = left_camera(rig, left_rgb8.size());
@@ -76,9 +112,14 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.seconds.depth = seconds_since(start);
 
   start = Clock::now();
+  if (!texture_left_rgb8.empty() && texture_left_rgb8.size() != left_rgb8.size()) {
+    throw InputError("pick", "the image without the pattern is not the pair's size");
+  }
   cv::Mat bgr;
-  cv::cvtColor(left_rgb8, bgr, cv::COLOR_RGB2BGR);
-  result.detections = impl_->detector.detect(bgr);
+  cv::cvtColor(texture_left_rgb8.empty() ? left_rgb8 : texture_left_rgb8, bgr, cv::COLOR_RGB2BGR);
+  result.detection_tiling = detection_tiling(bgr.size(), result.camera, result.depth_mm);
+  result.detections = detect_in_tiles([&](const cv::Mat& tile) { return impl_->detector.detect(tile); }, bgr,
+                                      result.detection_tiling, settings.detector.iou_threshold);
   result.detector_path = impl_->detector.planned();
   result.seconds.detection = seconds_since(start);
 
@@ -107,6 +148,9 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
         } catch (const InputError&) {
           continue;  // a box without any measured depth: nothing to pose it with
         }
+        // No template of the class fits the box at the measured depth: a box of another
+        // class, or of several parts; nothing was posed.
+        if (estimate.candidates == 0) continue;
         PickCandidate& c = candidates[i];
         c.obj_id = d.category_id;
         c.pose = estimate.pose;

@@ -10,6 +10,7 @@
 #include "host/cli/backend.h"
 #include "host/cli/pose_inputs.h"
 #include "host/detect/ssd_detector.h"
+#include "host/detect/tiled_detection.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/pick/pick_ranking.h"
 #include "host/stereo/stereo_params.h"
@@ -25,6 +26,9 @@ struct PickSettings {
   std::string templates;  // flexsight pose-templates' file
   std::string cad;        // the CAD folder the templates were made from
   int threads = 0;        // parts posed at once (0 = all cores)
+  // Detection tiles (host/detect/tiled_detection.h): -1 sized from the parts' diameters
+  // and the measured depth, 0 the whole image only, else tiles of this many pixels.
+  int detection_tile = -1;
   bool quiet = false;
 };
 
@@ -40,6 +44,7 @@ struct PickResult {
   double floor_depth_mm = 0.0;
   std::vector<ObjectDetection> detections;
   std::vector<PickCandidate> picks;  // ranked, best first
+  TilingPlan detection_tiling;  // the tiles detection ran on (tile 0: the whole image)
   PickStageSeconds seconds;
   std::string stereo_path, detector_path;  // which backend each ran on
 };
@@ -55,10 +60,22 @@ class PickPipeline {
   PickPipeline& operator=(const PickPipeline&) = delete;
 
   const PoseModels& models() const;
+  const SsdDetector& detector() const;
   // `left`, `right`: RGB8 of one size; `rig`: their calibration at that size.
-  PickResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig);
+  // `texture_left_rgb8`: the left view with the projector off, when the camera takes one
+  // (empty otherwise): detection and the pose's edges then use it, since the projector's
+  // dots hide the parts from a detector trained without them and are edges themselves.
+  PickResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
+                 const cv::Mat& texture_left_rgb8 = cv::Mat());
+
+  // The matcher's disparity range for the next pairs (each bin's calib.txt may give its own).
+  void set_ndisp(int ndisp);
+
+  // The matcher alone, with pick's settings (eval-pick's pair without the pattern).
+  cv::Mat disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8);
 
  private:
+  TilingPlan detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -52,6 +52,12 @@ class BadInputMatrix : public Cli {
     cv::imwrite((dir_ / "tiny_l.png").string(), flexsight::testing_support::random_rgb8(8, 8, 1));
     cv::imwrite((dir_ / "tiny_r.png").string(), flexsight::testing_support::random_rgb8(8, 8, 2));
     fs::create_directories(dir_ / "empty_folder");
+    // A bin folder without its disparity ground truth.
+    fs::create_directories(dir_ / "bins" / "bin000");
+    for (const char* name : {"scene_gt.json", "scene_gt_info.json", "scene_camera.json", "im0.png", "im1.png",
+                             "calib.txt", "mask0nocc.png", "im0_passive.png", "im1_passive.png"}) {
+      write("bins/bin000/" + std::string(name), "{}");
+    }
   }
 
   void expect_refused(const std::string& arguments, const std::string& must_mention) {
@@ -151,6 +157,18 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
            "existing.json",
        d + "junk.tpl"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --passive-left " +
+           d + "tiny_l.png -o " + d + "existing.json",
+       d + "tiny_l.png"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 12 -o " +
+           d + "existing.json",
+       "--tile"},
+      // eval-pick
+      {"eval-pick " + d + "empty_folder --out " + d + "pick_out --templates " + d + "junk.tpl", d + "empty_folder"},
+      {"eval-pick " + d + "nowhere --out " + d + "pick_out --templates " + d + "junk.tpl", d + "nowhere"},
+      {"eval-pick " + d + "bins --templates " + d + "junk.tpl", "--out"},
+      {"eval-pick " + d + "bins --out " + d + "pick_out --templates " + d + "junk.tpl", "disp0GT.pfm"},
+      {"eval-pick " + d + "bins --out " + d + "pick_out --templates " + d + "junk.tpl --limit 0", "--limit"},
       // sensor planning
       {"sensor-plan --baseline 0 -o " + d + "plan_out", "--baseline"},
       {"sensor-plan --hfov 180 -o " + d + "plan_out", "--hfov"},

@@ -1,0 +1,74 @@
+#include "host/cli/pick_options.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "host/cli/arguments.h"
+#include "host/cli/backend.h"
+#include "host/cli/pose_inputs.h"
+#include "host/detect/detector_model.h"
+#include "host/io/calibration.h"
+#include "host/io/input_error.h"
+
+namespace flexsight {
+
+PickOptions take_pick_options(std::vector<std::string>& args) {
+  PickOptions options;
+  PickSettings& settings = options.settings;
+  options.ndisp_given = std::find(args.begin(), args.end(), "--ndisp") != args.end();
+  // The camera's own scene is projector-lit: the active preset unless one is named.
+  if (std::find(args.begin(), args.end(), "--preset") == args.end()) apply_stereo_preset("active", settings.stereo);
+  consume_stereo_params(args, settings.stereo);
+  settings.backend = take_backend_options(args);
+  settings.templates = take_option(args, "--templates");
+  settings.cad = take_option(args, "--cad");
+  settings.model = resolve_detector_model_path(take_option(args, "--model"));
+  const double score = take_number_option(args, "--score", 0.3);
+  const std::string threads = take_option(args, "--threads");
+  const std::string tile = take_option(args, "--tile");
+  settings.quiet = take_flag(args, "--quiet");
+  if (!(score >= 0.0 && score <= 1.0)) throw InputError("option --score", "must lie in [0, 1]");
+  settings.detector.score_threshold = static_cast<float>(score);
+  if (!threads.empty()) settings.threads = static_cast<int>(parse_whole_number("--threads", threads, 1, 1024));
+  if (tile == "off") {
+    settings.detection_tile = 0;
+  } else if (!tile.empty() && tile != "auto") {
+    settings.detection_tile = static_cast<int>(parse_whole_number("--tile", tile, 64, 8192));
+  }
+  if (settings.templates.empty()) {
+    throw InputError("option --templates", "missing (make them once with flexsight pose-templates CAD_DIR -o FILE)");
+  }
+  if (settings.cad.empty()) settings.cad = default_pose_cad_dir();
+  return options;
+}
+
+std::string pick_options_help() {
+  std::ostringstream help;
+  help << "  --templates T      the parts' edge templates (flexsight pose-templates CAD_DIR -o T)\n"
+          "  --cad DIR          the CAD models the templates were made from (default:\n"
+          "                     "
+       << default_pose_cad_dir() << ")\n"
+       << "  --model M.onnx     the detector (default: the shipped one, " << default_detector_model_path() << ")\n"
+       << "  --tile auto|off|N  detect in tiles: auto (default) sizes them so a part spans\n"
+          "                     about 0.29 of a tile, as in the detector's training images,\n"
+          "                     from the parts' diameters and the measured depth; off: the\n"
+          "                     whole image; N: tiles of N pixels (64..8192)\n"
+          "  --score S          detections scoring above S are posed (default 0.3)\n"
+          "  --threads N        parts posed at once (default: all cores)\n"
+          "  --quiet            no progress lines\n"
+          "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"
+          "                     projector-lit pairs) unless another --preset is given\n"
+       << backend_options_help();
+  return help.str();
+}
+
+int pick_ndisp(const PickOptions& options, const std::string& calib) {
+  if (options.ndisp_given) return options.settings.stereo.ndisp;
+  try {
+    return read_middlebury_calib(calib).ndisp;
+  } catch (const InputError&) {
+    throw InputError("option --ndisp", "missing: " + calib + " gives no disparity range");
+  }
+}
+
+}  // namespace flexsight

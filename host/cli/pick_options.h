@@ -1,0 +1,28 @@
+#pragma once
+// The options `flexsight pick` and `flexsight eval-pick` share: the matcher's (the active
+// preset unless another is named), the backend, the detector, templates and CAD folder,
+// detection tiles, score and threads.
+#include <string>
+#include <vector>
+
+#include "host/cli/pick_pipeline.h"
+
+namespace flexsight {
+
+struct PickOptions {
+  PickSettings settings;
+  bool ndisp_given = false;  // else each pair's calib.txt gives it
+};
+
+// Takes the shared options out of `args`; InputError naming the option for a bad or
+// missing value (--templates is required).
+PickOptions take_pick_options(std::vector<std::string>& args);
+
+// The shared options' help lines.
+std::string pick_options_help();
+
+// The disparity range of a pair: `options`' --ndisp, else the calib.txt's ndisp
+// (InputError naming --ndisp when the calibration has none).
+int pick_ndisp(const PickOptions& options, const std::string& calib);
+
+}  // namespace flexsight

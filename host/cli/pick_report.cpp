@@ -1,0 +1,143 @@
+#include "host/cli/pick_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace flexsight {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json number_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+std::string percent(double fraction) {
+  if (!std::isfinite(fraction)) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * fraction);
+  return text;
+}
+
+std::string fixed(double value, const char* format) {
+  if (!std::isfinite(value)) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+Json stage_json(const PickStageSeconds& s) {
+  return {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
+          {"ranking", s.ranking}, {"total", s.total()}};
+}
+
+}  // namespace
+
+void summarize(PickReport& report) {
+  long targets = 0, posed = 0, top1 = 0;
+  double bad2 = 0.0, bad2_passive = 0.0;
+  int passive_bins = 0;
+  PickStageSeconds sum;
+  std::vector<std::vector<TruthBox>> truth;
+  std::vector<std::vector<DetectedBox>> detections;
+  for (const BinPickScore& bin : report.bins) {
+    targets += bin.targets_visib50;
+    posed += bin.posed_visib50;
+    top1 += bin.top1_correct ? 1 : 0;
+    bad2 += bin.bad2_pattern;
+    if (std::isfinite(bin.bad2_no_pattern)) {
+      bad2_passive += bin.bad2_no_pattern;
+      ++passive_bins;
+    }
+    sum.stereo += bin.seconds.stereo;
+    sum.depth += bin.seconds.depth;
+    sum.detection += bin.seconds.detection;
+    sum.pose += bin.seconds.pose;
+    sum.ranking += bin.seconds.ranking;
+    truth.push_back(bin.truth_boxes);
+    detections.push_back(bin.detected_boxes);
+  }
+  const double n = static_cast<double>(report.bins.size());
+  report.pose_recall = targets > 0 ? static_cast<double>(posed) / targets : std::nan("");
+  report.top1_correct = top1 / n;
+  report.bad2_pattern = bad2 / n;
+  report.bad2_no_pattern = passive_bins > 0 ? bad2_passive / passive_bins : std::nan("");
+  report.mean_seconds = {sum.stereo / n, sum.depth / n, sum.detection / n, sum.pose / n, sum.ranking / n};
+  report.seconds_per_bin = report.mean_seconds.total();
+  const DetectionScores scores = evaluate_detections(truth, detections, report.categories);
+  report.detection_map50 = scores.map50;
+  report.detection_coco_ap = scores.map50_95;
+}
+
+std::string to_json(const PickReport& report) {
+  Json bins = Json::array();
+  for (const BinPickScore& bin : report.bins) {
+    bins.push_back({{"bin", bin.bin},
+                    {"parts", bin.parts},
+                    {"targets_visib50", bin.targets_visib50},
+                    {"posed_visib50", bin.posed_visib50},
+                    {"picks", bin.picks},
+                    {"top1_correct", bin.top1_correct},
+                    {"top1_obj_id", bin.top1_obj_id},
+                    {"top1_add_over_diameter", number_or_null(bin.top1_error_ratio)},
+                    {"bad2_pattern", number_or_null(bin.bad2_pattern)},
+                    {"bad2_no_pattern", number_or_null(bin.bad2_no_pattern)},
+                    {"seconds", stage_json(bin.seconds)}});
+  }
+  const Json document = {{"bins_dir", report.bins_dir},
+                         {"model", report.model},
+                         {"templates", report.templates},
+                         {"cad", report.cad},
+                         {"stereo", report.stereo_path},
+                         {"bins", report.bins.size()},
+                         {"pose_recall", number_or_null(report.pose_recall)},
+                         {"top1_correct", report.top1_correct},
+                         {"bad2_pattern", number_or_null(report.bad2_pattern)},
+                         {"bad2_no_pattern", number_or_null(report.bad2_no_pattern)},
+                         {"detection_map50", number_or_null(report.detection_map50)},
+                         {"detection_coco_ap", number_or_null(report.detection_coco_ap)},
+                         {"seconds_per_bin", report.seconds_per_bin},
+                         {"stage_seconds", stage_json(report.mean_seconds)},
+                         {"definitions",
+                          {{"pose_recall", "parts at least half visible posed within ADD(-S) 0.1 d (BOP matching, the picks as estimates scored by pick_score)"},
+                           {"top1_correct", "share of bins whose first-ranked part lies within ADD(-S) 0.1 d of a part of its object"},
+                           {"bad2_pattern", "matcher's bad-2 (%) over all pixels with ground truth, with the projector; mean over bins"},
+                           {"bad2_no_pattern", "the same on the pair without the pattern (im0_passive.png, im1_passive.png); null when not run"},
+                           {"detection_map50", "VOC mAP at IoU 0.5 over the bins; truth: parts at least 10 % visible (less: crowd regions)"},
+                           {"seconds_per_bin", "mean of pick's stages, stereo to ranking; the passive matching is not included"}}},
+                         {"per_bin", bins}};
+  return document.dump(1) + "\n";
+}
+
+std::string to_markdown(const PickReport& report) {
+  std::ostringstream md;
+  md << "# flexsight eval-pick\n\n"
+     << "Bins: `" << report.bins_dir << "` (" << report.bins.size() << "); detector `" << report.model
+     << "`; stereo on " << report.stereo_path << ".\n\n"
+     << "| metric | value |\n|---|---|\n"
+     << "| pose recall (parts >= 50 % visible within ADD(-S) 0.1 d) | " << percent(report.pose_recall) << " |\n"
+     << "| top-ranked part correct | " << percent(report.top1_correct) << " of bins |\n"
+     << "| detection mAP@0.5 | " << percent(report.detection_map50) << " |\n"
+     << "| stereo bad-2, with the pattern | " << fixed(report.bad2_pattern, "%.2f %%") << " |\n"
+     << "| stereo bad-2, without the pattern | " << fixed(report.bad2_no_pattern, "%.2f %%") << " |\n"
+     << "| seconds per bin | " << fixed(report.seconds_per_bin, "%.1f") << " |\n\n"
+     << "| stage | mean seconds |\n|---|---|\n"
+     << "| stereo | " << fixed(report.mean_seconds.stereo, "%.2f") << " |\n"
+     << "| depth | " << fixed(report.mean_seconds.depth, "%.2f") << " |\n"
+     << "| detection | " << fixed(report.mean_seconds.detection, "%.2f") << " |\n"
+     << "| pose | " << fixed(report.mean_seconds.pose, "%.2f") << " |\n"
+     << "| ranking | " << fixed(report.mean_seconds.ranking, "%.3f") << " |\n\n"
+     << "| bin | parts | >= 50 % visible | posed | picks | top pick | its ADD(-S)/d | bad-2 pattern | bad-2 none | seconds |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BinPickScore& bin : report.bins) {
+    md << "| " << std::filesystem::path(bin.bin).filename().string() << " | " << bin.parts << " | "
+       << bin.targets_visib50 << " | " << bin.posed_visib50 << " | " << bin.picks << " | "
+       << (bin.top1_obj_id == 0 ? std::string("none") : "obj " + std::to_string(bin.top1_obj_id) + (bin.top1_correct ? " right" : " wrong"))
+       << " | " << fixed(bin.top1_error_ratio, "%.3f") << " | " << fixed(bin.bad2_pattern, "%.2f") << " | "
+       << fixed(bin.bad2_no_pattern, "%.2f") << " | " << fixed(bin.seconds.total(), "%.1f") << " |\n";
+  }
+  return md.str();
+}
+
+}  // namespace flexsight

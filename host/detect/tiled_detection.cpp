@@ -1,0 +1,93 @@
+#include "host/detect/tiled_detection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flexsight {
+namespace {
+
+// A box edge this near to a tile's inner edge counts as cut by it.
+constexpr float kCutMarginPx = 2.0f;
+
+float iou(const ObjectDetection& a, const ObjectDetection& b) {
+  const float w = std::min(a.box[2], b.box[2]) - std::max(a.box[0], b.box[0]);
+  const float h = std::min(a.box[3], b.box[3]) - std::max(a.box[1], b.box[1]);
+  if (w <= 0.0f || h <= 0.0f) return 0.0f;
+  const float inter = w * h;
+  const float area_a = (a.box[2] - a.box[0]) * (a.box[3] - a.box[1]);
+  const float area_b = (b.box[2] - b.box[0]) * (b.box[3] - b.box[1]);
+  return inter / (area_a + area_b - inter);
+}
+
+// Starts of tiles of `tile` along `length`, spread evenly so that neighbours are at
+// most `stride` apart, the first at 0 and the last ending at the edge.
+std::vector<int> tile_starts(int length, int tile, int stride) {
+  if (tile >= length) return {0};
+  const int span = length - tile;
+  const int gaps = (span + stride - 1) / stride;
+  std::vector<int> starts;
+  for (int i = 0; i <= gaps; ++i) starts.push_back(static_cast<int>(std::lround(static_cast<double>(i) * span / gaps)));
+  return starts;
+}
+
+bool cut_by_tile_edge(const ObjectDetection& d, const cv::Rect& tile, cv::Size image) {
+  return (tile.x > 0 && d.box[0] <= tile.x + kCutMarginPx) ||
+         (tile.y > 0 && d.box[1] <= tile.y + kCutMarginPx) ||
+         (tile.x + tile.width < image.width && d.box[2] >= tile.x + tile.width - kCutMarginPx) ||
+         (tile.y + tile.height < image.height && d.box[3] >= tile.y + tile.height - kCutMarginPx);
+}
+
+}  // namespace
+
+TilingPlan tiling_for_part_sizes(cv::Size image, double typical_part, double largest_part, int min_tile) {
+  TilingPlan plan;
+  if (!(typical_part > 0.0) || !(largest_part > 0.0)) return plan;
+  const int tile = std::max(min_tile, static_cast<int>(std::lround(typical_part / kTrainingPartFraction)));
+  if (tile * 4 >= std::min(image.width, image.height) * 3) return plan;
+  plan.tile = tile;
+  plan.stride = std::max(tile / 4, static_cast<int>(std::floor(tile - 1.1 * largest_part)));
+  return plan;
+}
+
+std::vector<cv::Rect> detection_tiles(cv::Size image, const TilingPlan& plan) {
+  std::vector<cv::Rect> tiles;
+  if (plan.tile <= 0) return tiles;
+  const int stride = std::clamp(plan.stride, 1, plan.tile);
+  for (int y : tile_starts(image.height, plan.tile, stride)) {
+    for (int x : tile_starts(image.width, plan.tile, stride)) {
+      tiles.emplace_back(cv::Rect(x, y, plan.tile, plan.tile) & cv::Rect(cv::Point(), image));
+    }
+  }
+  return tiles;
+}
+
+std::vector<ObjectDetection> detect_in_tiles(
+    const std::function<std::vector<ObjectDetection>(const cv::Mat&)>& detect, const cv::Mat& image,
+    const TilingPlan& plan, float iou_threshold) {
+  const std::vector<cv::Rect> tiles = detection_tiles(image.size(), plan);
+  if (tiles.empty()) return detect(image);
+  std::vector<ObjectDetection> all;
+  for (const cv::Rect& tile : tiles) {
+    for (ObjectDetection d : detect(image(tile))) {
+      d.box[0] += tile.x;
+      d.box[2] += tile.x;
+      d.box[1] += tile.y;
+      d.box[3] += tile.y;
+      if (!cut_by_tile_edge(d, tile, image.size())) all.push_back(d);
+    }
+  }
+  // Best first; ties in the order the tiles found them, so the result does not depend on
+  // the sort's implementation.
+  std::stable_sort(all.begin(), all.end(),
+                   [](const ObjectDetection& a, const ObjectDetection& b) { return a.score > b.score; });
+  std::vector<ObjectDetection> kept;
+  for (const ObjectDetection& d : all) {
+    const bool suppressed = std::any_of(kept.begin(), kept.end(), [&](const ObjectDetection& k) {
+      return k.category_id == d.category_id && iou(k, d) > iou_threshold;
+    });
+    if (!suppressed) kept.push_back(d);
+  }
+  return kept;
+}
+
+}  // namespace flexsight
