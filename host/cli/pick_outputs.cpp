@@ -31,6 +31,21 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                                   {"refine", c.times.refine_ms}, {"icp", c.times.icp_ms},
                                   {"score", c.times.score_ms}}}});
   }
+  Json proposals = Json::array();
+  for (const PickCandidate& c : result.proposals) {
+    Json R = Json::array(), t = Json::array();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) R.push_back(c.pose.R(i, j));
+      t.push_back(c.pose.t(i));
+    }
+    proposals.push_back({{"obj_id", c.obj_id},
+                         {"pose_score", c.pose_score},
+                         {"detection_score", c.detection_score},
+                         {"visible_fraction", c.visible_fraction},
+                         {"box", {c.box.x, c.box.y, c.box.width, c.box.height}},
+                         {"R", R},
+                         {"t_mm", t}});
+  }
   const PickStageSeconds& s = result.seconds;
   Json document = {
       {"inputs", {{"left", inputs.left}, {"right", inputs.right}, {"calib", inputs.calib}, {"model", inputs.model},
@@ -46,7 +61,8 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
       {"detection_tiles", {{"tile", result.detection_tiling.tile}, {"stride", result.detection_tiling.stride}}},
       {"seconds", {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
                    {"ranking", s.ranking}, {"total", s.total()}}},
-      {"picks", picks}};
+      {"picks", picks},
+      {"proposals", proposals}};
   return document.dump(1) + "\n";
 }
 

@@ -23,6 +23,10 @@ double seconds_since(Clock::time_point start) {
 // stereo depth is a few millimetres off at a metre.
 constexpr double kVisibilityToleranceMm = 5.0;
 
+// Boxes overlapping more than this are one part (proposed as several classes).
+constexpr double kDuplicateIou = 0.5;
+
+
 }  // namespace
 
 struct PickPipeline::Impl {
@@ -126,17 +130,18 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   // Each detection posed on its own, several at once (one estimator per thread).
   start = Clock::now();
   const cv::Rect image_rect(cv::Point(), bgr.size());
-  std::vector<PickCandidate> candidates(result.detections.size());
-  std::vector<bool> posed(result.detections.size(), false);
+  const std::vector<int> proposals = pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou);
+  std::vector<PickCandidate> candidates(proposals.size());
+  std::vector<bool> posed(proposals.size(), false);
   std::exception_ptr failure;
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
 #pragma omp parallel num_threads(threads)
   {
     PoseEstimator estimator(settings.pose);
 #pragma omp for schedule(dynamic)
-    for (int i = 0; i < static_cast<int>(result.detections.size()); ++i) {
+    for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
       try {
-        const ObjectDetection& d = result.detections[i];
+        const ObjectDetection& d = result.detections[proposals[i]];
         const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
                                       cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
                              image_rect;
@@ -176,6 +181,8 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
 
   start = Clock::now();
   rank_picks(result.picks);
+  result.proposals = result.picks;
+  remove_duplicate_picks(result.picks, kDuplicateIou);
   result.seconds.ranking = seconds_since(start);
   return result;
 }

@@ -29,6 +29,8 @@ struct PickSettings {
   // Detection tiles (host/detect/tiled_detection.h): -1 sized from the parts' diameters
   // and the measured depth, 0 the whole image only, else tiles of this many pixels.
   int detection_tile = -1;
+  // Classes posed per box (pose_proposals in host/pick/pick_ranking.h), the best fit kept.
+  int classes_per_box = 3;
   bool quiet = false;
 };
 
@@ -44,6 +46,9 @@ struct PickResult {
   double floor_depth_mm = 0.0;
   std::vector<ObjectDetection> detections;
   std::vector<PickCandidate> picks;  // ranked, best first
+  // Every pose tried (a box with several classes, ranked; picks are what is left after
+  // remove_duplicate_picks), for diagnosis.
+  std::vector<PickCandidate> proposals;
   TilingPlan detection_tiling;  // the tiles detection ran on (tile 0: the whole image)
   PickStageSeconds seconds;
   std::string stereo_path, detector_path;  // which backend each ran on

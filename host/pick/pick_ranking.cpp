@@ -48,4 +48,58 @@ void rank_picks(std::vector<PickCandidate>& candidates) {
   });
 }
 
+namespace {
+
+double box_iou(const ObjectDetection& a, const ObjectDetection& b) {
+  const double w = std::min(a.box[2], b.box[2]) - std::max(a.box[0], b.box[0]);
+  const double h = std::min(a.box[3], b.box[3]) - std::max(a.box[1], b.box[1]);
+  if (w <= 0.0 || h <= 0.0) return 0.0;
+  const double area_a = (a.box[2] - a.box[0]) * (a.box[3] - a.box[1]);
+  const double area_b = (b.box[2] - b.box[0]) * (b.box[3] - b.box[1]);
+  return w * h / (area_a + area_b - w * h);
+}
+
+}  // namespace
+
+std::vector<int> pose_proposals(const std::vector<ObjectDetection>& detections, int classes_per_box, double iou) {
+  std::vector<int> order(detections.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return detections[a].score > detections[b].score; });
+  struct Group {
+    int lead;
+    std::vector<int> members;
+  };
+  std::vector<Group> groups;
+  std::vector<int> chosen;
+  for (int i : order) {
+    const ObjectDetection& d = detections[i];
+    auto group = std::find_if(groups.begin(), groups.end(),
+                              [&](const Group& g) { return box_iou(detections[g.lead], d) > iou; });
+    if (group == groups.end()) {
+      groups.push_back({i, {i}});
+      chosen.push_back(i);
+      continue;
+    }
+    const bool known = std::any_of(group->members.begin(), group->members.end(),
+                                   [&](int m) { return detections[m].category_id == d.category_id; });
+    if (known || static_cast<int>(group->members.size()) >= classes_per_box) continue;
+    group->members.push_back(i);
+    chosen.push_back(i);
+  }
+  return chosen;
+}
+
+void remove_duplicate_picks(std::vector<PickCandidate>& ranked, double iou) {
+  std::vector<PickCandidate> kept;
+  for (const PickCandidate& c : ranked) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const PickCandidate& k) {
+      const double inter = (c.box & k.box).area();
+      return inter > iou * (c.box.area() + k.box.area() - inter);
+    });
+    if (!duplicate) kept.push_back(c);
+  }
+  ranked = std::move(kept);
+}
+
 }  // namespace flexsight

@@ -7,6 +7,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "host/detect/ssd_detector.h"
+
 #include "host/pose/pose_estimator.h"
 #include "host/render/mesh.h"
 #include "host/render/raycaster.h"
@@ -41,5 +43,18 @@ double floor_depth_mm(const cv::Mat& depth_mm);
 // Sets each candidate's pick_score and sorts best first: pick_score descending, then
 // the higher part, then the detection order (stable).
 void rank_picks(std::vector<PickCandidate>& candidates);
+
+// The detections worth posing: detections (best first) are grouped by box (IoU above
+// `iou` with a group's best box) and each group keeps its `classes_per_box` best-scored
+// classes. On bins the right class is often not the detector's first but among its
+// first few at that place; posing each of them and keeping the best fit
+// (remove_duplicate_picks) classifies by the shape, while the groups bound the cost.
+// Returns indices into `detections`, best first.
+std::vector<int> pose_proposals(const std::vector<ObjectDetection>& detections, int classes_per_box, double iou);
+
+// Keeps, of ranked candidates whose boxes overlap by IoU above `iou`, the first: one
+// part proposed as several classes (or twice) is posed as each, and the best fit
+// decides what it is.
+void remove_duplicate_picks(std::vector<PickCandidate>& ranked, double iou);
 
 }  // namespace flexsight

@@ -81,4 +81,49 @@ TEST(PickRanking, WellPosedUncoveredPartsFirstThenTheHigher) {
   EXPECT_DOUBLE_EQ(candidates[3].pick_score, 0.45);
 }
 
+TEST(PickRanking, OnePartProposedAsTwoClassesKeepsTheBetterFit) {
+  // Ranked already: a part posed as class 8 (best), the same box as class 7, a
+  // neighbour touching it, and a box half over the first (IoU 1/3: another part).
+  std::vector<PickCandidate> ranked(4);
+  ranked[0].obj_id = 8;
+  ranked[0].box = cv::Rect(100, 100, 60, 120);
+  ranked[1].obj_id = 7;
+  ranked[1].box = cv::Rect(104, 98, 58, 118);
+  ranked[2].obj_id = 7;
+  ranked[2].box = cv::Rect(160, 100, 60, 120);
+  ranked[3].obj_id = 3;
+  ranked[3].box = cv::Rect(130, 100, 60, 120);
+  remove_duplicate_picks(ranked, 0.5);
+  ASSERT_EQ(ranked.size(), 3u);
+  EXPECT_EQ(ranked[0].obj_id, 8);
+  EXPECT_EQ(ranked[1].box, cv::Rect(160, 100, 60, 120));
+  EXPECT_EQ(ranked[2].obj_id, 3);
+}
+
+ObjectDetection detection(int category, float score, float x, float y, float w, float h) {
+  ObjectDetection d;
+  d.category_id = category;
+  d.score = score;
+  d.box[0] = x;
+  d.box[1] = y;
+  d.box[2] = x + w;
+  d.box[3] = y + h;
+  return d;
+}
+
+TEST(PickRanking, ProposalsAreTheBestClassesOfEachBox) {
+  const std::vector<ObjectDetection> detections = {
+      detection(7, 0.2f, 100, 100, 60, 120),   // 0: box A, second class
+      detection(8, 0.6f, 102, 98, 60, 118),    // 1: box A, best
+      detection(3, 0.5f, 300, 100, 50, 50),    // 2: box B
+      detection(9, 0.1f, 101, 101, 59, 119),   // 3: box A, third class
+      detection(8, 0.15f, 98, 100, 62, 121),   // 4: box A, class 8 again: nothing new
+      detection(11, 0.08f, 100, 99, 60, 120),  // 5: box A, fourth class: beyond three
+      detection(7, 0.3f, 330, 120, 50, 50),    // 6: overlaps B a little: a box of its own
+  };
+  EXPECT_EQ(pose_proposals(detections, 3, 0.5), (std::vector<int>{1, 2, 6, 0, 3}));
+  EXPECT_EQ(pose_proposals(detections, 1, 0.5), (std::vector<int>{1, 2, 6}));
+  EXPECT_TRUE(pose_proposals({}, 3, 0.5).empty());
+}
+
 }  // namespace
