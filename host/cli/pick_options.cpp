@@ -13,10 +13,10 @@
 namespace flexsight {
 namespace {
 
-// Pick poses the detections above this (the best three classes per box) and keeps the
+// Pick poses the detections above this (the best five classes per box) and keeps the
 // best-fitting pose where boxes overlap: on bins the detector's right class scores
-// 0.05-0.3 for half of the parts (docs/pick.md), and a wrong class fits worse.
-constexpr double kPickDetectionScore = 0.05;
+// 0.03-0.3 for half of the parts (docs/pick.md), and a wrong class fits worse.
+constexpr double kPickDetectionScore = 0.03;
 
 }  // namespace
 
@@ -65,10 +65,10 @@ std::string pick_options_help() {
           "                     about 0.29 of a tile, as in the detector's training images,\n"
           "                     from the parts' diameters and the measured depth; off: the\n"
           "                     whole image; N: tiles of N pixels (64..8192)\n"
-          "  --score S          detections scoring above S are posed (default 0.05: the\n"
+          "  --score S          detections scoring above S are posed (default 0.03: the\n"
           "                     detector proposes, the pose's fit decides)\n"
           "  --classes-per-box K  the detector's K best classes at a box are each posed, the\n"
-          "                     best fit kept (default 3; 1: the detector decides alone)\n"
+          "                     best fit kept (default 5; 1: the detector decides alone)\n"
           "  --threads N        parts posed at once (default: all cores)\n"
           "  --quiet            no progress lines\n"
           "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"

@@ -6,6 +6,12 @@
 #include "host/pose/pose_drawing.h"
 
 namespace flexsight {
+namespace {
+
+// Picks ranked below this pick_score are left out of the picture (still in the JSON).
+constexpr double kPictureMinPickScore = 0.5;
+
+}  // namespace
 
 std::string pick_json(const PickResult& result, const PickInputsDescription& inputs) {
   using Json = nlohmann::ordered_json;
@@ -69,14 +75,15 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
 cv::Mat pick_picture(const cv::Mat& left_rgb8, const PickResult& result, const PoseModels& models) {
   cv::Mat bgr;
   cv::cvtColor(left_rgb8, bgr, cv::COLOR_RGB2BGR);
-  for (const ObjectDetection& d : result.detections) {
-    cv::rectangle(bgr, cv::Point2f(d.box[0], d.box[1]), cv::Point2f(d.box[2], d.box[3]), cv::Scalar(200, 200, 0), 1);
-  }
+  // The picks a robot would consider: the first always, the rest while they fit well.
+  // Drawing the detector's hundreds of low-score proposals as well would hide the parts.
   std::vector<PosedPart> parts;
   int rank = 1;
   for (const PickCandidate& c : result.picks) {
+    if (rank > 1 && c.pick_score < kPictureMinPickScore) break;
     // The first pick green, the others orange.
     const cv::Scalar colour = rank == 1 ? cv::Scalar(80, 220, 80) : cv::Scalar(0, 140, 255);
+    cv::rectangle(bgr, c.box, cv::Scalar(200, 200, 0), 1);
     parts.push_back({models.model(c.obj_id, "").mesh, c.pose, colour,
                      "#" + std::to_string(rank) + " obj " + std::to_string(c.obj_id)});
     ++rank;

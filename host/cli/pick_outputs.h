@@ -15,7 +15,8 @@ struct PickInputsDescription {
 // The JSON document of a pick (docs/pick.md, "PICKS.json").
 std::string pick_json(const PickResult& result, const PickInputsDescription& inputs);
 
-// The left image with each detection's box and each posed part's outline and rank.
+// The left image with the picks' boxes and outlines and their ranks: the first pick, and
+// the next ones while their pick_score is at least 0.5.
 cv::Mat pick_picture(const cv::Mat& left_rgb8, const PickResult& result, const PoseModels& models);
 
 }  // namespace flexsight

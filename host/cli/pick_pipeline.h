@@ -30,7 +30,7 @@ struct PickSettings {
   // and the measured depth, 0 the whole image only, else tiles of this many pixels.
   int detection_tile = -1;
   // Classes posed per box (pose_proposals in host/pick/pick_ranking.h), the best fit kept.
-  int classes_per_box = 3;
+  int classes_per_box = 5;
   bool quiet = false;
 };
 
