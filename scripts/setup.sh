@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs whatever is missing from Debian packages, then builds FlexSight into build/.
 # Runs as root, or as a user who may sudo. Safe to run again: installs only what lacks.
+# `scripts/setup.sh --packages-only` installs (packages, build/venv) without building:
+# for scripts/test.sh --sanitize and scripts/fuzz.sh, which build into folders of their own.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,6 +13,7 @@ packages=(
   libembree-dev libassimp-dev nlohmann-json3-dev libceres-dev libnanoflann-dev
   python3 python3-venv python3-numpy python3-pil python3-skimage python3-meshio python3-matplotlib
   python3-torch python3-torchvision python3-opencv python3-flatbuffers python3-onnx
+  clang libclang-rt-14-dev libomp-dev
 )
 missing=()
 for package in "${packages[@]}"; do
@@ -37,6 +40,8 @@ if ! "$venv/bin/python3" -c "import pycocotools" 2>/dev/null; then
   /usr/bin/python3 -m venv --system-site-packages "$venv"
   "$venv/bin/pip" install --quiet --disable-pip-version-check pycocotools==2.0.11
 fi
+
+[ "${1:-}" = --packages-only ] && exit 0
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
