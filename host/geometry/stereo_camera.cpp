@@ -140,9 +140,28 @@ StereoCamera read_opencv_camera(const std::string& path) {
   } catch (const cv::Exception& error) {
     throw InputError(path, std::string("is not valid OpenCV YAML/XML: ") + error.err);
   }
+  // The size first: OpenCV's reader allocates rows x cols before it reads the data, and
+  // takes a size that is not a number as INT_MAX, so a few bytes could ask for 64 GB.
+  // storage[name] asserts (cv::Exception) on a file whose top level is not a map.
+  if (!storage.root().isMap()) {
+    throw InputError(path, "is not OpenCV YAML/XML of named values (expected Q: !!opencv-matrix)");
+  }
+  const cv::FileNode q_node = storage["Q"];
+  if (q_node.isMap()) {
+    const cv::FileNode rows = q_node["rows"], cols = q_node["cols"];
+    if (!rows.isInt() || !cols.isInt()) {
+      throw InputError(path, "Q is not a matrix: rows and cols must be whole numbers");
+    }
+    const int r = static_cast<int>(rows), c = static_cast<int>(cols);
+    if (r != 0 && c != 0 && (r != 4 || c != 4)) {  // 0 x 0: no Q, said below
+      throw InputError(path, "Q is " + std::to_string(r) + "x" + std::to_string(c) + ", expected 4x4");
+    }
+  } else if (!q_node.empty() && !q_node.isNone()) {
+    throw InputError(path, "Q is not a matrix (expected an opencv-matrix with rows, cols, dt, data)");
+  }
   cv::Mat q;
   try {
-    storage["Q"] >> q;
+    q_node >> q;
   } catch (const cv::Exception& error) {
     throw InputError(path, std::string("Q is not a matrix: ") + error.err);
   }

@@ -160,3 +160,24 @@ TEST_F(OpenCvCalibration, RejectsMalformedFiles) {
   EXPECT_NE(error_of([&] { read_stereo_camera(broken_yaml); }).find(broken_yaml),
             std::string::npos);
 }
+
+// Found by tests/fuzz/fuzz_opencv_camera: a size that is not a number ("*4", a YAML
+// alias OpenCV does not resolve) read as INT_MAX rows, and OpenCV then allocated
+// INT_MAX x 4 doubles (64 GB) for a 200-byte file. The size is checked first now.
+TEST_F(OpenCvCalibration, RejectsASizeThatIsNotANumberBeforeAllocating) {
+  const std::string path = (dir_ / "alias_rows.yml").string();
+  std::ofstream(path) << "%YAML:1.0\n---\nQ: !!opencv-matrix\n   rows: *4\n   cols: 4\n   dt: d\n"
+                         "   data: [ 1., 0., 0., -99.5, 0., 1., 0., -93.5 ]\nunit: mm\n";
+  const std::string error = error_of([&] { read_stereo_camera(path); });
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("rows and cols must be whole numbers"), std::string::npos) << error;
+  const std::string huge = (dir_ / "huge.yml").string();
+  std::ofstream(huge) << "%YAML:1.0\n---\nQ: !!opencv-matrix\n   rows: 2000000000\n   cols: 4\n   dt: d\n"
+                         "   data: [ 1. ]\n";
+  EXPECT_NE(error_of([&] { read_stereo_camera(huge); }).find("expected 4x4"), std::string::npos);
+  // A top level that is a list, not a map: OpenCV's lookup by name asserts.
+  const std::string list = (dir_ / "list.yml").string();
+  std::ofstream(list) << "%YAML:1.0\n---\n- Q\n- 1\n";
+  EXPECT_NE(error_of([&] { read_stereo_camera(list); }).find("is not OpenCV YAML/XML of named values"),
+            std::string::npos);
+}
