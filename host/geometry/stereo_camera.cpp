@@ -139,6 +139,10 @@ StereoCamera read_opencv_camera(const std::string& path) {
     }
   } catch (const cv::Exception& error) {
     throw InputError(path, std::string("is not valid OpenCV YAML/XML: ") + error.err);
+  } catch (const std::exception& error) {
+    // OpenCV's parser lets std::length_error and std::bad_alloc through on some
+    // malformed files (found by tests/fuzz/fuzz_opencv_camera).
+    throw InputError(path, std::string("is not valid OpenCV YAML/XML (") + error.what() + ")");
   }
   // The size first: OpenCV's reader allocates rows x cols before it reads the data, and
   // takes a size that is not a number as INT_MAX, so a few bytes could ask for 64 GB.

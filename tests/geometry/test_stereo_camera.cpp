@@ -181,3 +181,12 @@ TEST_F(OpenCvCalibration, RejectsASizeThatIsNotANumberBeforeAllocating) {
   EXPECT_NE(error_of([&] { read_stereo_camera(list); }).find("is not OpenCV YAML/XML of named values"),
             std::string::npos);
 }
+
+// Found by tests/fuzz/fuzz_opencv_camera: on this malformed file OpenCV's parser throws
+// std::length_error, not cv::Exception, and it escaped the reader.
+TEST(OpenCvCalibrationFuzzFinding, ALengthErrorInsideOpenCvIsAnInputError) {
+  const std::string path = std::string(FLEXSIGHT_TEST_DATA_DIR) + "/calib/fuzz_opencv_length_error.yml";
+  const std::string error = error_of([&] { read_opencv_camera(path); });
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("is not valid OpenCV YAML/XML"), std::string::npos) << error;
+}
