@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs whatever is missing from Debian packages, then builds FlexSight into build/.
 # Runs as root, or as a user who may sudo. Safe to run again: installs only what lacks.
-# `scripts/setup.sh --packages-only` installs (packages, build/venv) without building:
-# for scripts/test.sh --sanitize and scripts/fuzz.sh, which build into folders of their own.
+# `--no-build`: the packages and build/venv, no build (scripts/test.sh --sanitize, which
+# builds into build-asan/); `--packages-only`: the packages alone (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -34,6 +34,7 @@ fi
 # build folder (PEP 668 keeps pip out of Debian's Python) made from Debian's python3, so
 # that --system-site-packages gives it Debian's numpy and PIL. Made once: re-made only
 # when pycocotools does not import. CMake's FLEXSIGHT_COCO_PYTHON points at it.
+[ "${1:-}" = --packages-only ] && exit 0
 venv=build/venv
 if ! "$venv/bin/python3" -c "import pycocotools" 2>/dev/null; then
   echo "setup: installing pycocotools into $venv"
@@ -41,7 +42,7 @@ if ! "$venv/bin/python3" -c "import pycocotools" 2>/dev/null; then
   "$venv/bin/pip" install --quiet --disable-pip-version-check pycocotools==2.0.11
 fi
 
-[ "${1:-}" = --packages-only ] && exit 0
+[ "${1:-}" = --no-build ] && exit 0
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
