@@ -10,11 +10,18 @@
 # on a scratch copy. A finding (crash, sanitizer report, leak, time-out over 10 s, more
 # than 2 GB) is kept in build-fuzz/findings/<harness>/, its log beside it; re-run one with
 # build-fuzz/tests/fuzz/fuzz_<harness> FILE. Exits 1 when there is a finding.
+#
+# Known hangs inside third-party parsers (docs/reliability.md, "Findings"): a time-out
+# in a harness named in FUZZ_KNOWN_HANGS (default: mesh, in Assimp's PLY reader, and
+# opencv_camera, in OpenCV's YAML parser) is listed but does not fail the run; set
+# FUZZ_KNOWN_HANGS= to make it fail. FUZZ_SKIP="mesh ..." leaves harnesses out (CI leaves
+# out mesh: Debian's Assimp aborts on an assertion within a few dozen malformed PLYs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-10}
 [ $# -gt 0 ] && shift
 runs=${FUZZ_RUNS:--1}
+known_hangs=" ${FUZZ_KNOWN_HANGS-mesh opencv_camera} "
 
 scripts/setup.sh --packages-only
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DFLEXSIGHT_FUZZ=ON \
@@ -26,7 +33,10 @@ if [ $# -gt 0 ]; then
   harnesses=("$@")
 else
   harnesses=()
-  for dir in tests/fuzz/corpus/*/; do harnesses+=("$(basename "$dir")"); done
+  for dir in tests/fuzz/corpus/*/; do
+    name=$(basename "$dir")
+    [[ " ${FUZZ_SKIP:-} " == *" $name "* ]] || harnesses+=("$name")
+  done
 fi
 
 scratch=$(mktemp -d)
@@ -42,6 +52,7 @@ for name in "${harnesses[@]}"; do
   cp -r "tests/fuzz/corpus/$name/." "$scratch/$name/"
   log=$findings_dir/last_run.log
   before=$(find "$findings_dir" -type f ! -name '*.log' | wc -l)
+  timeouts_before=$(find "$findings_dir" -type f -name 'timeout-*' | wc -l)
   echo "fuzz: $name for ${seconds} s" >&2
   "$binary" "$scratch/$name" -max_total_time="$seconds" -runs="$runs" -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings_dir/" >"$log" 2>&1 || true
@@ -53,8 +64,14 @@ for name in "${harnesses[@]}"; do
     echo "fuzz: $name: finding, see $log" >&2
     grep -m5 -E 'ERROR|runtime error|terminate|deadly' "$log" >&2 || true
   fi
-  total_findings=$(( total_findings + found ))
-  rows+=("$(printf '%-20s %12s %8s %9s' "$name" "${executed:-?}" "${took:-?}" "$found")")
+  timeouts=$(( $(find "$findings_dir" -type f -name 'timeout-*' | wc -l) - timeouts_before ))
+  note=""
+  if [ "$found" -gt 0 ] && [ "$found" -eq "$timeouts" ] && [[ "$known_hangs" == *" $name "* ]]; then
+    note=" (known third-party hang)"
+  else
+    total_findings=$(( total_findings + found ))
+  fi
+  rows+=("$(printf '%-20s %12s %8s %9s%s' "$name" "${executed:-?}" "${took:-?}" "$found" "$note")")
 done
 
 printf '%-20s %12s %8s %9s\n' harness runs seconds findings
