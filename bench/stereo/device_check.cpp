@@ -6,7 +6,7 @@
 //
 // usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] [--reference 0|1]
 //                               [--cl-platform SEL] [--cl-device SEL] [--profile]
-//                               [--preset accurate|fast] [--cl-build-options "OPTS"]
+//                               [--preset accurate|fast|active] [--cl-build-options "OPTS"]
 // MANIFEST: one scene a line, "NAME LEFT.ppm RIGHT.ppm NDISP" (paths relative to the
 // manifest's folder). Writes OUT_DIR/NAME.pfm (OpenCL result) and a Markdown table on
 // stdout: per scene the median and fastest end-to-end time of `repeat` runs (upload,
@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
   if (argc < 3) {
     std::cerr << "usage: flexsight_device_check MANIFEST OUT_DIR [--repeat N] "
                  "[--reference 0|1] [--cl-platform SEL] [--cl-device SEL] [--profile] "
-                 "[--preset accurate|fast] [--cl-build-options \"OPTS\"]\n";
+                 "[--preset accurate|fast|active] [--cl-build-options \"OPTS\"]\n";
     return 1;
   }
   const std::string manifest = argv[1];

@@ -296,8 +296,11 @@ std::vector<std::pair<std::string, std::string>> stereo_param_values(const Stere
 std::string stereo_params_help() {
   std::ostringstream out;
   out << "  --preset NAME                 speed/accuracy settings: accurate (default) or fast\n"
-         "                                (window steps and iterations; the options below\n"
-         "                                override it)\n";
+         "                                (window steps and iterations), or active for\n"
+         "                                projector-lit scenes (accurate, with higher cost\n"
+         "                                truncations, an 8-px left/right tolerance and no\n"
+         "                                background bound in the hole median); the options\n"
+         "                                below override it\n";
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
     // A name too long for the column gets its help on the next line, as --device's does.

@@ -16,5 +16,7 @@ int run_synth_command(std::vector<std::string> args);
 int run_detect_command(std::vector<std::string> args);
 int run_pose_templates_command(std::vector<std::string> args);
 int run_pose_command(std::vector<std::string> args);
+int run_pick_command(std::vector<std::string> args);
+int run_sensor_plan_command(std::vector<std::string> args);
 
 }  // namespace flexsight

@@ -19,10 +19,12 @@ void print_usage() {
                "  eval-pose DATASET --results POSES.csv --out DIR  score 6D poses (BOP: ADD(-S), AR)\n"
                "  cloud DISP.pfm LEFT --calib FILE -o CLOUD.ply  disparity to depth and a point cloud\n"
                "  render MESH [MESH ...] -o IMAGE.png       a picture of CAD parts (STL, PLY, OBJ)\n"
-               "  synth full|semi|patches|merge ...         synthetic training data (BOP + COCO)\n"
+               "  synth full|semi|patches|merge|bin ...     synthetic training data (BOP + COCO), stereo bins\n"
                "  detect IMAGE... [-o DETS.json] [options]  find the parts in images (SSD detector)\n"
                "  pose DATASET --gt-boxes --templates T --out DIR  6D poses of parts (D2CO + ICP)\n"
                "  pose-templates CAD_DIR -o TEMPLATES       edge templates of the parts, for pose\n"
+               "  pick LEFT RIGHT --calib C --templates T   stereo, detection, poses: the parts ranked for a robot\n"
+               "  sensor-plan [options] [-o DIR]            camera/projector placement: coverage, depth resolution\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
@@ -47,7 +49,9 @@ int main(int argc, char** argv) {
     if (command == "synth") return flexsight::run_synth_command(args);
     if (command == "detect") return flexsight::run_detect_command(args);
     if (command == "pose") return flexsight::run_pose_command(args);
+    if (command == "pick") return flexsight::run_pick_command(args);
     if (command == "pose-templates") return flexsight::run_pose_templates_command(args);
+    if (command == "sensor-plan") return flexsight::run_sensor_plan_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();
       return 0;

@@ -67,10 +67,6 @@ PoseRefinement parse_refinement(const std::string& text) {
   throw InputError("option --refinement", "expected both, edges or depth, got '" + text + "'");
 }
 
-std::string default_cad_dir() {
-  const char* data = std::getenv("FLEXSIGHT_DETECTION_DATA");
-  return std::string(data != nullptr && *data != '\0' ? data : FLEXSIGHT_DEFAULT_DETECTION_DATA) + "/cad/tless";
-}
 
 bool to_pose(const PartAnnotation& part, double min_visib) {
   return part.visib_fract >= min_visib && !part.bbox_visib.empty();
@@ -97,7 +93,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const std::int64_t limit = limit_text.empty() ? -1 : parse_whole_number("--limit", limit_text, 1, 1000000000);
   const int threads = threads_text.empty() ? omp_get_max_threads()
                                            : static_cast<int>(parse_whole_number("--threads", threads_text, 1, 1024));
-  if (cad.empty()) cad = default_cad_dir();
+  if (cad.empty()) cad = default_pose_cad_dir();
   if (models_info.empty()) models_info = default_models_info_beside(cad);
 
   const BopReader reader(dataset);
@@ -202,7 +198,7 @@ int run_pose_command(std::vector<std::string> args) {
   std::string cad = take_option(args, "--cad");
   PoseEstimatorParams params;
   params.refinement = parse_refinement(take_option(args, "--refinement"));
-  return run_pose_image_form(input, args, cad.empty() ? default_cad_dir() : cad, params);
+  return run_pose_image_form(input, args, cad.empty() ? default_pose_cad_dir() : cad, params);
 }
 
 }  // namespace flexsight

@@ -101,12 +101,7 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
                                      " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
                                      std::to_string(bgr.rows));
   }
-  PinholeCamera camera;
-  camera.fx = camera.fy = rig.Q(2, 3);
-  camera.cx = -rig.Q(0, 3);
-  camera.cy = -rig.Q(1, 3);
-  camera.width = bgr.cols;
-  camera.height = bgr.rows;
+  const PinholeCamera camera = left_camera(rig, bgr.size());
   const double to_mm = rig.metres_per_unit * 1000.0;
   const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
   const cv::Mat input = read_pfm(depth_source);

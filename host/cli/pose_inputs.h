@@ -7,11 +7,19 @@
 #include <string>
 
 #include "host/dataset/bop_reader.h"
+#include "host/geometry/stereo_camera.h"
 #include "host/pose/edge_template.h"
 #include "host/pose/pose_estimator.h"
 #include "host/synth/part_library.h"
 
 namespace flexsight {
+
+// The T-LESS CAD folder of the detection data ($FLEXSIGHT_DETECTION_DATA/cad/tless, or
+// the build's default), where pose and pick look when no --cad is given.
+std::string default_pose_cad_dir();
+
+// The pinhole camera of the left view of a rectified rig (its Q), for images of `size`.
+PinholeCamera left_camera(const StereoCamera& rig, cv::Size size);
 
 // The pinhole camera of a BOP image (its K and size).
 PinholeCamera camera_of(const AnnotatedImage& image);

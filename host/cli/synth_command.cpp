@@ -15,6 +15,7 @@ void print_help() {
                "  semi     segmented part patches pasted on background photographs\n"
                "  patches  cut such patches from a BOP folder with mask_visib\n"
                "  merge    join the shards of a data set made with --shard I/N\n"
+               "  bin      parts dropped into a bin, seen by the active stereo rig (docs/sim.md)\n"
                "Run 'flexsight synth <generator> --help' for its options; docs/synth.md\n"
                "describes the data sets.\n";
 }
@@ -32,6 +33,7 @@ int run_synth_command(std::vector<std::string> args) {
   if (generator == "semi") return run_synth_semi_command(args);
   if (generator == "patches") return run_synth_patches_command(args);
   if (generator == "merge") return run_synth_merge_command(args);
+  if (generator == "bin") return run_synth_bin_command(args);
   if (generator == "--help" || generator == "-h") {
     print_help();
     return 0;

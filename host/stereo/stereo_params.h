@@ -173,10 +173,13 @@ const char* method_name(StereoMethod method);
 // iterations below the coarsest level); every other field keeps its value. "accurate"
 // is the defaults above. "fast" samples the windows more sparsely and runs one iteration
 // per finer level, about 3x faster for about 0.65 points of bad-2 (fast_preset() in
-// stereo_params.cpp says why). Returns false for an unknown name.
+// stereo_params.cpp says why). "active" is for projector-lit scenes (active stereo):
+// the accurate knobs, plus higher truncations of the colour and gradient terms, a wider
+// left/right tolerance and every consistent pixel voting in the hole median (the only
+// preset that touches those fields; ActiveCost in stereo_params.cpp says why). Returns false for an unknown name.
 bool apply_stereo_preset(const std::string& name, StereoParams& params);
 
-// "accurate, fast": for messages and --help.
+// "accurate, fast, active": for messages and --help.
 const char* stereo_preset_names();
 
 }  // namespace flexsight

@@ -17,16 +17,6 @@ using namespace flexsight::cli_test_support;
 
 namespace {
 
-// Every file under `dir` with its bytes.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    const std::string name = fs::relative(entry.path(), dir).string();
-    files[name] = entry.is_regular_file() ? slurp(entry.path()) : std::string("<folder>");
-  }
-  return files;
-}
-
 class BadInputMatrix : public Cli {
  protected:
   void SetUp() override {
@@ -40,6 +30,9 @@ class BadInputMatrix : public Cli {
     write("doffs_calib.txt",
           "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[100 0 34; 0 100 24; 0 0 1]\ndoffs=1e300\nbaseline=100\n"
           "width=64\nheight=48\nndisp=16\n");
+    write("wide_calib.txt",  // for 640 x 400 images: not a uniform resize of 64 x 48
+          "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[100 0 34; 0 100 24; 0 0 1]\ndoffs=4\nbaseline=100\n"
+          "width=640\nheight=400\nndisp=16\n");
     write("focal_calib.txt",
           "cam0=[100 0 30; 0 100 24; 0 0 1]\ncam1=[120 0 34; 0 120 24; 0 0 1]\ndoffs=4\nbaseline=100\n"
           "width=64\nheight=48\nndisp=16\n");
@@ -127,6 +120,10 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"render " + cad + "/obj_01.stl -o " + d + "existing.png --size 0x10", "--size"},
       {"synth full --count 0 -o " + d + "synth_out", "--count"},
       {"synth full --count 1 --cad " + d + "nowhere -o " + d + "synth_out", d + "nowhere"},
+      {"synth bin --count 0 -o " + d + "bins_out", "--count"},
+      {"synth bin --count 1 --baseline -1 -o " + d + "bins_out", "--baseline"},
+      {"synth bin --count 1 --bin 600x400x100 -o " + d + "bins_out", "--bin"},
+      {"synth bin --count 1 --cad " + d + "nowhere -o " + d + "bins_out", d + "nowhere"},
       // detection
       {"detect " + d + "nope.png -o " + d + "existing.json", d + "nope.png"},
       {"detect " + d + "left.png --model " + d + "junk.onnx -o " + d + "existing.json", d + "junk.onnx"},
@@ -137,6 +134,28 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
            "existing.json --templates " + d + "junk.tpl -o " + d + "existing.json",
        d + "junk.tpl"},
       {"eval-pose " + d + "nowhere --results " + d + "poses.csv --out " + d + "pose_out", d + "nowhere"},
+      // pick
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt -o " + d + "existing.json", "--templates"},
+      {"pick " + d + "left.png " + d + "tiny_r.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "tiny_r.png"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "wide_calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "wide_calib.txt"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "doffs_calib.txt --templates " + d + "junk.tpl -o " +
+           d + "existing.json",
+       d + "doffs_calib.txt"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --model " +
+           d + "junk.onnx -o " + d + "existing.json",
+       d + "junk.onnx"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
+           "existing.json",
+       d + "junk.tpl"},
+      // sensor planning
+      {"sensor-plan --baseline 0 -o " + d + "plan_out", "--baseline"},
+      {"sensor-plan --hfov 180 -o " + d + "plan_out", "--hfov"},
+      {"sensor-plan --volume 600x400 -o " + d + "plan_out", "--volume"},
+      {"sensor-plan -o " + d + "existing.png", d + "existing.png"},
   };
   ASSERT_GE(cases.size(), 30u);
   for (const Case& c : cases) expect_refused(c.arguments, c.must_mention);

@@ -302,7 +302,7 @@ const BadDetect kBadDetects[] = {
     {"ScoreAboveOne", "{image} --model {model} --score 1.5",
      "option --score: must lie in [0, 1], got 1.5"},
     {"ScoreNaN", "{image} --model {model} --score nan",
-     "option --score: must lie in [0, 1], got nan"},
+     "option --score: expected a finite number, got 'nan'"},
     {"ScoreNotANumber", "{image} --model {model} --score high",
      "option --score: expected a number, got 'high'"},
     {"IouNegative", "{image} --model {model} --iou -0.1",

@@ -34,17 +34,6 @@ Json read_json(const fs::path& path) {
   return Json::parse(in);
 }
 
-// Every file under `dir` with its bytes: equal before and after a run when it wrote
-// nothing (no output, no staging folder, no temporary file).
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    const std::string name = fs::relative(entry.path(), dir).string();
-    files[name] = entry.is_regular_file() ? slurp(entry.path()) : "<folder>";
-  }
-  return files;
-}
-
 // Three images (COCO ids 7, 3, 11, listed out of order) of classes 1 "one" and 2 "two":
 //   image 3: class 1 at [4, 4, 20, 16]; image 7: class 2 at [30, 10, 20, 20];
 //   image 11: class 1 at [10, 20, 30, 20].

@@ -27,16 +27,6 @@ namespace {
 
 std::string table_path() { return std::string(FLEXSIGHT_SOURCE_DIR) + "/models/tless-cad/models_info.json"; }
 
-// Every file under `dir` with its bytes (folders as "<folder>").
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    const std::string name = fs::relative(entry.path(), dir).string();
-    files[name] = entry.is_regular_file() ? slurp(entry.path()) : "<folder>";
-  }
-  return files;
-}
-
 Json read_json(const fs::path& path) {
   std::ifstream in(path);
   return Json::parse(in);

@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the matcher tests: fixture paths, synthetic images (random_texture.h),
 // byte compares.
+#include <unistd.h>
+
 #include <cstring>
 #include <filesystem>
 #include <ostream>
@@ -23,8 +25,11 @@ namespace flexsight::testing_support {
 inline std::string fixture_dir() { return std::string(FLEXSIGHT_TEST_DATA_DIR) + "/TeddyH"; }
 
 // A fresh, empty folder under the system temp dir for one test.
+// The process id in the name: two checkouts (or two ctest runs) on one machine may run
+// the same test at once, and must not remove each other's folders.
 inline std::filesystem::path fresh_temp_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("flexsight_test_" + name);
+  auto dir = std::filesystem::temp_directory_path() /
+             ("flexsight_test_" + name + "_" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

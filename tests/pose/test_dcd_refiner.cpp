@@ -12,24 +12,13 @@
 #include "host/pose/pose_math.h"
 #include "host/render/mesh.h"
 #include "host/render/raycaster.h"
+#include "tests/pose/pose_test_support.h"
 
 using namespace flexsight;
+using flexsight::pose_test_support::picture;
 
 namespace {
 
-// A grey picture of the part: brightness from the normal's turn to the camera, so the
-// silhouette and the creases show as edges, as under a lamp at the camera.
-cv::Mat picture(const RaycastImages& images) {
-  cv::Mat grey(images.depth.size(), CV_8UC1, cv::Scalar(20));
-  for (int y = 0; y < grey.rows; ++y) {
-    for (int x = 0; x < grey.cols; ++x) {
-      if (images.instance.at<int>(y, x) < 0) continue;
-      const float facing = std::abs(images.geometric_normal.at<cv::Vec3f>(y, x)[2]);
-      grey.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(60 + 180 * facing);
-    }
-  }
-  return grey;
-}
 
 TEST(DcdRefiner, ConvergesFromPosesTenDegreesAndTenMillimetresOff) {
   auto mesh = std::make_shared<const Mesh>(load_mesh(std::string(FLEXSIGHT_TLESS_CAD_DIR) + "/obj_21.stl"));

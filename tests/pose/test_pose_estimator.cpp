@@ -15,27 +15,16 @@
 #include "host/pose/pose_math.h"
 #include "host/render/mesh.h"
 #include "host/render/raycaster.h"
+#include "tests/pose/pose_test_support.h"
 #include "tests/render/render_test_support.h"
 
 using namespace flexsight;
+using flexsight::pose_test_support::picture;
 using flexsight::testing_support::box_mesh;
 using flexsight::testing_support::tless_cad_path;
 
 namespace {
 
-// Brightness from the normal's turn to the camera (a lamp at the camera), on a dark
-// background: silhouettes and creases show as edges.
-cv::Mat picture(const RaycastImages& images) {
-  cv::Mat grey(images.depth.size(), CV_8UC1, cv::Scalar(20));
-  for (int y = 0; y < grey.rows; ++y) {
-    for (int x = 0; x < grey.cols; ++x) {
-      if (images.instance.at<int>(y, x) < 0) continue;
-      const float facing = std::abs(images.geometric_normal.at<cv::Vec3f>(y, x)[2]);
-      grey.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(60 + 180 * facing);
-    }
-  }
-  return grey;
-}
 
 // Mean distance from each vertex at `estimate` to the nearest vertex at `truth` (ADD-S).
 double add_s(const Mesh& mesh, const Pose& estimate, const Pose& truth) {

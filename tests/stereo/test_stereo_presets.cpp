@@ -89,6 +89,48 @@ TEST(StereoPresets, AccurateIsTheDefaults) {
   expect_same_non_knob_fields(p, unusual_params());
 }
 
+// The projector-lit bins' preset (docs/stereo.md, "Projector-lit bins"): the accurate
+// speed knobs, the colour and gradient truncations raised above the rendered images'
+// true-match residual, an 8-px left/right tolerance, every consistent pixel voting in the
+// hole median; nothing else moves.
+TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
+  const StereoParams defaults;
+  StereoParams p = unusual_params();
+  ASSERT_TRUE(apply_stereo_preset("fast", p));
+  ASSERT_TRUE(apply_stereo_preset("active", p));
+  EXPECT_EQ(p.tau_color, 100.0f);
+  EXPECT_EQ(p.tau_gradient, 50.0f);
+  EXPECT_EQ(p.lr_tolerance, 8.0f);
+  EXPECT_TRUE(std::isinf(p.median_background_margin));
+  EXPECT_EQ(p.window_step, defaults.window_step);
+  EXPECT_EQ(p.window_step_fine, defaults.window_step_fine);
+  EXPECT_EQ(p.window_step_finest, defaults.window_step_finest);
+  EXPECT_EQ(p.iterations_fine, defaults.iterations_fine);
+  EXPECT_EQ(p.iterations_finest, defaults.iterations_finest);
+  expect_same_non_knob_fields(p, unusual_params());
+  StereoParams checked;
+  ASSERT_TRUE(apply_stereo_preset("active", checked));
+  EXPECT_NO_THROW(checked.check());
+  // The other presets leave those three fields alone.
+  for (const char* name : {"accurate", "fast"}) {
+    StereoParams q = p;
+    ASSERT_TRUE(apply_stereo_preset(name, q));
+    EXPECT_EQ(q.tau_color, 100.0f) << name;
+    EXPECT_EQ(q.tau_gradient, 50.0f) << name;
+    EXPECT_EQ(q.lr_tolerance, 8.0f) << name;
+    EXPECT_TRUE(std::isinf(q.median_background_margin)) << name;
+  }
+  // Through the command line, with an explicit option overriding it.
+  std::vector<std::string> args = {"--tau-color", "30", "--preset", "active"};
+  StereoParams cli;
+  consume_stereo_params(args, cli);
+  EXPECT_EQ(cli.tau_color, 30.0f);
+  EXPECT_EQ(cli.tau_gradient, 50.0f);
+  EXPECT_EQ(cli.lr_tolerance, 8.0f);
+  EXPECT_TRUE(std::isinf(cli.median_background_margin));
+  EXPECT_TRUE(args.empty());
+}
+
 TEST(StereoPresets, AnUnknownNameChangesNothing) {
   StereoParams p = unusual_params();
   EXPECT_FALSE(apply_stereo_preset("quick", p));

@@ -1,0 +1,70 @@
+#include "host/cli/pick_outputs.h"
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "host/pose/pose_drawing.h"
+
+namespace flexsight {
+
+std::string pick_json(const PickResult& result, const PickInputsDescription& inputs) {
+  using Json = nlohmann::ordered_json;
+  Json picks = Json::array();
+  int rank = 1;
+  for (const PickCandidate& c : result.picks) {
+    Json R = Json::array(), t = Json::array();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) R.push_back(c.pose.R(i, j));
+      t.push_back(c.pose.t(i));
+    }
+    picks.push_back({{"rank", rank++},
+                     {"obj_id", c.obj_id},
+                     {"pick_score", c.pick_score},
+                     {"pose_score", c.pose_score},
+                     {"detection_score", c.detection_score},
+                     {"visible_fraction", c.visible_fraction},
+                     {"height_mm", c.height_mm},
+                     {"box", {c.box.x, c.box.y, c.box.width, c.box.height}},
+                     {"R", R},
+                     {"t_mm", t},
+                     {"pose_ms", {{"edges", c.times.edges_ms}, {"search", c.times.search_ms},
+                                  {"refine", c.times.refine_ms}, {"icp", c.times.icp_ms},
+                                  {"score", c.times.score_ms}}}});
+  }
+  const PickStageSeconds& s = result.seconds;
+  Json document = {
+      {"inputs", {{"left", inputs.left}, {"right", inputs.right}, {"calib", inputs.calib}, {"model", inputs.model},
+                  {"templates", inputs.templates}, {"cad", inputs.cad}}},
+      {"image_size", {result.disparity.cols, result.disparity.rows}},
+      {"camera", {{"fx", result.camera.fx}, {"fy", result.camera.fy}, {"cx", result.camera.cx}, {"cy", result.camera.cy}}},
+      {"frame", "left camera: x right, y down, z forward, mm; R row-major maps model to camera"},
+      {"stereo", result.stereo_path},
+      {"detector", result.detector_path},
+      {"floor_depth_mm", result.floor_depth_mm},
+      {"detections", result.detections.size()},
+      {"seconds", {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
+                   {"ranking", s.ranking}, {"total", s.total()}}},
+      {"picks", picks}};
+  return document.dump(1) + "\n";
+}
+
+cv::Mat pick_picture(const cv::Mat& left_rgb8, const PickResult& result, const PoseModels& models) {
+  cv::Mat bgr;
+  cv::cvtColor(left_rgb8, bgr, cv::COLOR_RGB2BGR);
+  for (const ObjectDetection& d : result.detections) {
+    cv::rectangle(bgr, cv::Point2f(d.box[0], d.box[1]), cv::Point2f(d.box[2], d.box[3]), cv::Scalar(200, 200, 0), 1);
+  }
+  std::vector<PosedPart> parts;
+  int rank = 1;
+  for (const PickCandidate& c : result.picks) {
+    // The first pick green, the others orange.
+    const cv::Scalar colour = rank == 1 ? cv::Scalar(80, 220, 80) : cv::Scalar(0, 140, 255);
+    parts.push_back({models.model(c.obj_id, "").mesh, c.pose, colour,
+                     "#" + std::to_string(rank) + " obj " + std::to_string(c.obj_id)});
+    ++rank;
+  }
+  draw_posed_parts(bgr, parts, result.camera);
+  return bgr;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,196 @@
+// flexsight synth bin: bins of T-LESS parts dropped with rigid-body physics, seen by the
+// active stereo rig (room light and a red dot projector), one MiddEval3 + BOP scene
+// folder per bin (host/sim/, docs/sim.md).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "host/cli/arguments.h"
+#include "host/cli/progress_bar.h"
+#include "host/cli/synth_commands.h"
+#include "host/cli/synth_settings_options.h"
+#include "host/io/atomic_file.h"
+#include "host/io/input_error.h"
+#include "host/io/staged_folder.h"
+#include "host/sim/bin_scene.h"
+#include "host/sim/bin_writer.h"
+#include "host/synth/part_library.h"
+
+namespace flexsight {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string default_cad_dir() { return detection_data_dir() + "/cad/tless"; }
+
+std::vector<SettingOption> bin_setting_options(BinSimSettings& s) {
+  return {
+      {"baseline", &s.rig.baseline_mm, nullptr, "between the camera centres, mm"},
+      {"distance", &s.rig.distance_mm, nullptr, "from the cameras to the volume's centroid, mm"},
+      {"focal", &s.rig.focal_px, nullptr, "focal length, pixels (0: fill the views with the volume)"},
+      {"wall-thickness", &s.bin.wall_thickness_mm, nullptr, "bin walls, mm"},
+      {"floor-thickness", &s.bin.floor_thickness_mm, nullptr, "bin floor, mm"},
+      {"min-parts", nullptr, &s.min_parts, "fewest parts dropped per bin"},
+      {"max-parts", nullptr, &s.max_parts, "most parts dropped per bin"},
+      {"dots", nullptr, &s.projector.dots, "projector dots"},
+      {"projector-fov", &s.projector.fov_degrees, nullptr, "projector field of view (square), degrees"},
+      {"dot-size", &s.projector.dot_sigma_degrees, nullptr, "dot radius (Gaussian sigma), degrees"},
+      {"noise", &s.noise_sigma, nullptr, "camera noise sigma, grey levels"},
+      {"room-light", &s.room_light, nullptr, "ceiling light strength"},
+      {"ambient", &s.ambient, nullptr, "ambient light"},
+  };
+}
+
+// "AxBxC" (mm) into three numbers.
+void take_triple_option(std::vector<std::string>& args, const std::string& name, double& a,
+                        double& b, double& c) {
+  const std::string text = take_option(args, name);
+  if (text.empty()) return;
+  double values[3];
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lfx%lfx%lf%c", &values[0], &values[1], &values[2], &tail) != 3) {
+    throw InputError("option " + name, "expected LxWxH in mm (e.g. 500x340x120), got '" + text + "'");
+  }
+  a = values[0];
+  b = values[1];
+  c = values[2];
+}
+
+void print_help() {
+  BinSimSettings defaults;
+  std::cout
+      << "usage: flexsight synth bin --count N -o OUT_DIR [options]\n"
+         "  -o OUT_DIR            where the bins go: OUT_DIR/bin000, bin001, ... (OUT_DIR is\n"
+         "                        made when missing; its parent must exist)\n"
+         "  --count N             bins to make (required)\n"
+         "  --seed S              every bin is a function of (seed, bin index) (default 1)\n"
+         "  --cad DIR             the parts: STL, PLY, OBJ in mm (default " << default_cad_dir() << ")\n"
+         "  --parts MIN..MAX      parts dropped per bin (default 10..20)\n"
+         "  --size WxH            image size of both cameras (default 1280x960)\n"
+         "  --volume XxYxZ        working volume, mm (default 600x400x400)\n"
+         "  --bin LxWxH           bin: inner floor and wall height, mm (default 500x340x120)\n"
+         "  --pattern-seed S      layout of the projector's dots (default 1)\n"
+         "  --projector-power P   radiance of a dot (default 2.5)\n"
+         "  --threads N           threads per bin (default: all; same bytes for any N)\n"
+         "  --overwrite           replace bin folders that exist\n"
+         "Settings (defaults; docs/sim.md says why):\n"
+      << settings_options_help(bin_setting_options(defaults));
+}
+
+std::string bin_name(std::int64_t index, std::int64_t count) {
+  // Three digits at least, as many as the last bin needs: names sort in bin order.
+  const std::size_t digits = std::max<std::size_t>(3, std::to_string(count - 1).size());
+  const std::string number = std::to_string(index);
+  return "bin" + std::string(digits - std::min(digits, number.size()), '0') + number;
+}
+
+}  // namespace
+
+int run_synth_bin_command(std::vector<std::string> args) {
+  if (const auto code = usage_exit_code(args, print_help)) return *code;
+  BinSimSettings settings;
+  const std::string output = take_option(args, "-o");
+  const bool overwrite = take_flag(args, "--overwrite");
+  const std::string count_text = take_option(args, "--count");
+  const std::string seed_text = take_option(args, "--seed");
+  const std::string cad_option = take_option(args, "--cad");
+  const std::string parts_text = take_option(args, "--parts");
+  const std::string pattern_seed_text = take_option(args, "--pattern-seed");
+  const std::string threads_text = take_option(args, "--threads");
+  const double power = take_number_option(args, "--projector-power", settings.projector.power);
+  take_size_option(args, settings.rig.width, settings.rig.height);
+  take_triple_option(args, "--volume", settings.rig.volume_x_mm, settings.rig.volume_y_mm,
+                     settings.rig.volume_z_mm);
+  take_triple_option(args, "--bin", settings.bin.length_mm, settings.bin.width_mm,
+                     settings.bin.wall_height_mm);
+  take_settings_options(args, bin_setting_options(settings));
+  reject_unknown_options(args);
+  if (!args.empty()) throw InputError("synth bin", "unexpected argument '" + args[0] + "'");
+
+  if (output.empty()) throw InputError("option -o", "an output folder is required");
+  if (count_text.empty()) throw InputError("option --count", "the number of bins is required");
+  const std::int64_t count = parse_whole_number("--count", count_text, 1, 1000000);
+  const auto seed = static_cast<std::uint32_t>(
+      seed_text.empty() ? 1 : parse_whole_number("--seed", seed_text, 0, 4294967295LL));
+  if (!pattern_seed_text.empty()) {
+    settings.projector.pattern_seed =
+        static_cast<std::uint32_t>(parse_whole_number("--pattern-seed", pattern_seed_text, 0, 4294967295LL));
+  }
+  if (!threads_text.empty()) settings.threads = int(parse_whole_number("--threads", threads_text, 0, 4096));
+  if (!parts_text.empty()) {
+    const std::size_t dots = parts_text.find("..");
+    if (dots == std::string::npos) {
+      throw InputError("option --parts", "expected MIN..MAX (e.g. 10..20), got '" + parts_text + "'");
+    }
+    settings.min_parts = int(parse_whole_number("--parts", parts_text.substr(0, dots), 1, 200));
+    settings.max_parts = int(parse_whole_number("--parts", parts_text.substr(dots + 2), 1, 200));
+  }
+  settings.projector.power = float(power);
+  settings.check();
+
+  // Where the bins go, checked before any work: nothing is written on bad input.
+  const fs::path root(output);
+  std::error_code ec;
+  if (fs::exists(root, ec) && !fs::is_directory(root, ec)) {
+    throw InputError("option -o", output + " exists and is not a folder");
+  }
+  const fs::path parent = root.has_parent_path() ? root.parent_path() : fs::path(".");
+  if (!fs::exists(root, ec) && !fs::is_directory(parent.empty() ? fs::path(".") : parent, ec)) {
+    throw InputError("option -o", "the parent folder of " + output + " does not exist");
+  }
+  for (std::int64_t i = 0; i < count; ++i) {
+    const fs::path bin = root / bin_name(i, count);
+    if (fs::exists(bin, ec) && !overwrite &&
+        !(fs::is_directory(bin, ec) && fs::is_empty(bin, ec))) {
+      throw InputError("option -o", bin.string() + " exists and is not empty (use --overwrite)");
+    }
+  }
+  const std::string cad = cad_option.empty() ? default_cad_dir() : cad_option;
+  const PartLibrary parts = PartLibrary::load_folder(cad);
+  const BinSimulator simulator(settings, parts);
+
+  fs::create_directories(root, ec);
+  if (ec) throw InputError("option -o", output + " cannot be created (" + ec.message() + ")");
+  ProgressBar progress(count, "bins");
+  double physics_ms = 0.0, render_ms = 0.0;
+  std::int64_t part_count = 0;
+  for (std::int64_t i = 0; i < count; ++i) {
+    const fs::path bin = root / bin_name(i, count);
+    StagedFolder staged(bin.string(), overwrite);
+    const BinViews views = simulator.simulate(seed, i);
+    write_bin_folder(staged.path(), simulator.rig(), views);
+    // What made the bin and how the physics went (no timings: same seed, same bytes).
+    nlohmann::json info = {{"generator", "synth bin"},
+                           {"seed", seed},
+                           {"bin_index", i},
+                           {"cad", cad},
+                           {"parts_dropped", views.physics.dropped},
+                           {"parts_removed", views.physics.removed},
+                           {"parts_in_bin", views.parts.size()},
+                           {"physics_steps", views.physics.steps},
+                           {"at_rest", views.physics.at_rest},
+                           {"pattern_seed", settings.projector.pattern_seed},
+                           {"settings", settings_json(bin_setting_options(settings), settings.rig.width,
+                                                      settings.rig.height)}};
+    write_atomically(staged.path() + "/sim_info.json", [&](const std::string& tmp) {
+      std::ofstream out(tmp);
+      out << info.dump(2) << "\n";
+      if (!out.flush()) throw InputError(staged.path() + "/sim_info.json", "cannot be written");
+    });
+    staged.commit();
+    physics_ms += views.physics_ms;
+    render_ms += views.render_ms;
+    part_count += static_cast<std::int64_t>(views.parts.size());
+    progress.advance();
+  }
+  progress.finish();
+  std::fprintf(stderr,
+               "wrote %lld bins to %s: %.1f parts per bin, %.2f s physics + %.2f s rendering per bin\n",
+               static_cast<long long>(count), output.c_str(), double(part_count) / count,
+               physics_ms / 1000.0 / count, render_ms / 1000.0 / count);
+  return 0;
+}
+
+}  // namespace flexsight
