@@ -43,8 +43,9 @@ struct Mesh {
   float diameter = 0.0f;
 };
 
-// Reads an STL (binary or ASCII), PLY or OBJ file through Assimp: polygons are
-// triangulated, points and lines dropped, identical positions joined, triangles whose
+// Reads an STL (binary or ASCII), PLY (ASCII or binary) or OBJ file with the project's
+// own readers (host/render/mesh_files.h; not Assimp, which crashes and hangs on
+// malformed files): polygons are cut into triangle fans, points and lines dropped, identical positions joined, triangles whose
 // corners coincide dropped. Throws InputError naming `path` when it does not exist,
 // cannot be read or parsed, or has no triangle.
 Mesh load_mesh(const std::string& path, const MeshOptions& options = {});
