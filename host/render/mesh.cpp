@@ -17,6 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Triangle = std::array<std::uint32_t, 3>;
+constexpr float kMaxCoordinate = 1e9f;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -112,6 +113,11 @@ Mesh build_mesh(const std::string& source, const std::vector<Eigen::Vector3f>& r
   mesh.source = source;
   for (const Eigen::Vector3f& p : raw_positions) {
     if (!p.allFinite()) throw InputError(source, "has a vertex that is not a finite number");
+    // Beyond this, normals and the diameter overflow a float (found by fuzz_mesh: a
+    // vertex at 2.6e38 gave an infinite diameter). 1e9 mm is 1000 km.
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw InputError(source, "has a vertex coordinate beyond 1e9 (in the file's units, mm: 1000 km)");
+    }
   }
   std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> index_of;
   std::vector<std::uint32_t> remap(raw_positions.size());

@@ -53,7 +53,7 @@ Mesh load_mesh(const std::string& path, const MeshOptions& options = {});
 // A mesh from positions and triangles given in memory (test shapes, the bin's walls),
 // with the same joining, normals, box and diameter as load_mesh. `source` names it in
 // messages; throws InputError naming it for an index out of range, a position that is
-// not finite, or no triangle left.
+// not finite or has a coordinate beyond 1e9 (load_mesh too), or no triangle left.
 Mesh make_mesh(const std::string& source, std::vector<Eigen::Vector3f> positions,
                std::vector<std::array<std::uint32_t, 3>> triangles,
                const MeshOptions& options = {});

@@ -266,6 +266,11 @@ TEST(MeshLoading, MalformedFilesNameTheirProblem) {
       {"ascii_cut.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "ends where ASCII STL expects 'vertex'"},
       {"ascii_word.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zero\n", "line 4: 'zero' is not a number"},
       {"ascii_no_end.stl", "solid x\n", "ends before 'endsolid'"},
+      // Found by fuzz_mesh: a vertex at 2.6e38 gave an infinite diameter.
+      {"far_vertex.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 2.6e38 0 0\nvertex 0 1 0\n"
+       "endloop\nendfacet\nendsolid x\n",
+       "has a vertex coordinate beyond 1e9"},
       {"cut.ply", cube.substr(0, cube.size() - 3), "ends inside its data"},
       {"trailing.ply", cube + "xyz", "has 3 bytes after the last element"},
       {"too_many.ply", binary_ply_cube(false, 2000000000), "declares 2000000000 'face' elements, more than"},
