@@ -229,7 +229,7 @@ void BM_Render_Shade(benchmark::State& state) {
                  (samples > 0 ? std::to_string(samples) + " shadow rays/pixel" : "hard shadows"));
 }
 
-// Reading T-LESS obj_02 (82 114 triangles): Assimp, joining, crease normals, diameter.
+// Reading T-LESS obj_02 (82 114 triangles): our STL reader, joining, crease normals, diameter.
 void BM_Render_LoadMesh(benchmark::State& state) {
   for (auto _ : state) {
     try {

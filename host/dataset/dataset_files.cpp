@@ -54,7 +54,7 @@ Json read_json(const std::string& path) {
   const std::string text = io_detail::read_whole_file(path);
   try {
     return Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number too large (1e999)
     // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5:
     // ..."; the part after the bracket is the useful one.
     std::string message = e.what();

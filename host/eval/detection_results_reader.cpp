@@ -57,7 +57,7 @@ Json parse_results(const std::string& path) {
   const std::string text = quote_non_finite_words(io_detail::read_whole_file(path));
   try {
     return Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number too large (1e999)
     std::string message = e.what();
     const auto bracket = message.find("] ");
     if (bracket != std::string::npos) message = message.substr(bracket + 2);

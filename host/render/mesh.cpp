@@ -1,24 +1,23 @@
 #include "host/render/mesh.h"
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
 #include <algorithm>
-#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <functional>
+#include <fstream>
 #include <numeric>
+#include <sstream>
 #include <unordered_map>
 
 #include "host/io/input_error.h"
+#include "host/render/mesh_files.h"
 
 namespace flexsight {
 namespace {
 
 namespace fs = std::filesystem;
 using Triangle = std::array<std::uint32_t, 3>;
+constexpr float kMaxCoordinate = 1e9f;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -114,6 +113,11 @@ Mesh build_mesh(const std::string& source, const std::vector<Eigen::Vector3f>& r
   mesh.source = source;
   for (const Eigen::Vector3f& p : raw_positions) {
     if (!p.allFinite()) throw InputError(source, "has a vertex that is not a finite number");
+    // Beyond this, normals and the diameter overflow a float (found by fuzz_mesh: a
+    // vertex at 2.6e38 gave an infinite diameter). 1e9 mm is 1000 km.
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw InputError(source, "has a vertex coordinate beyond 1e9 (in the file's units, mm: 1000 km)");
+    }
   }
   std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> index_of;
   std::vector<std::uint32_t> remap(raw_positions.size());
@@ -328,61 +332,25 @@ Mesh load_mesh(const std::string& path, const MeshOptions& options) {
   }
   if (fs::file_size(path, error) == 0) throw InputError(path, "is empty");
 
-  Assimp::Importer importer;
-  // Polygons become triangles; points and lines stay and are skipped below, so that a
-  // file of them only reads as "no triangles" rather than as Assimp's complaint about
-  // empty meshes. No unit conversion, no normal generation (ours keep sharp edges, see
-  // MeshOptions), no joining (ours joins positions only; Assimp's would keep vertices
-  // apart whose normals or texture coordinates differ).
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
-  if (scene == nullptr) {
-    throw InputError(path,
-                     std::string("cannot be read as a mesh (") + importer.GetErrorString() + ")");
+  std::string bytes;
+  {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw InputError(path, "cannot be opened");
+    std::ostringstream content;
+    content << file.rdbuf();
+    if (!file.good() && !file.eof()) throw InputError(path, "cannot be read");
+    bytes = std::move(content).str();
   }
-  if (scene->mNumMeshes == 0) throw InputError(path, "has no triangles");
-
-  // An STL's normals are one per facet, copied to its corners by Assimp: no vertex
-  // normals, so the crease-angle ones are computed as for a file without any.
-  bool use_file_normals = ext != ".stl";
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    if (!scene->mMeshes[m]->HasNormals()) use_file_normals = false;
-  }
-
-  // The meshes where the file's nodes place them (for STL, PLY and OBJ the identity;
-  // Assimp's own pre-transform step refuses a file whose only mesh is a point cloud,
-  // which should read as "no triangles").
-  std::vector<Eigen::Vector3f> positions;
-  std::vector<Triangle> triangles;
-  std::vector<Eigen::Vector3f> normals;
-  const std::function<void(const aiNode*, const aiMatrix4x4&)> gather =
-      [&](const aiNode* node, const aiMatrix4x4& parent) {
-        const aiMatrix4x4 transform = parent * node->mTransformation;
-        aiMatrix3x3 normal_transform(transform);
-        normal_transform.Inverse().Transpose();
-        for (unsigned i = 0; i < node->mNumMeshes; ++i) {
-          const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
-          const std::uint32_t base = std::uint32_t(positions.size());
-          for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-            const aiVector3D p = transform * mesh->mVertices[v];
-            positions.emplace_back(p.x, p.y, p.z);
-          }
-          for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-            const aiFace& face = mesh->mFaces[f];
-            if (face.mNumIndices != 3) continue;  // a point or a line: no surface
-            triangles.push_back(
-                {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
-            if (use_file_normals) {
-              for (int k = 0; k < 3; ++k) {
-                const aiVector3D n = normal_transform * mesh->mNormals[face.mIndices[k]];
-                normals.emplace_back(n.x, n.y, n.z);
-              }
-            }
-          }
-        }
-        for (unsigned c = 0; c < node->mNumChildren; ++c) gather(node->mChildren[c], transform);
-      };
-  if (scene->mRootNode != nullptr) gather(scene->mRootNode, aiMatrix4x4());
-  return build_mesh(path, positions, triangles, use_file_normals ? &normals : nullptr, options);
+  // Our own readers, not Assimp (mesh_files.h says why). An STL's normals are one per
+  // facet: no vertex normals, so the crease-angle ones are computed as for a file
+  // without any.
+  const mesh_files::RawMesh raw = ext == ".stl"   ? mesh_files::read_stl(path, bytes)
+                                  : ext == ".ply" ? mesh_files::read_ply(path, bytes)
+                                                  : mesh_files::read_obj(path, bytes);
+  const bool use_file_normals =
+      !raw.corner_normals.empty() && raw.corner_normals.size() == 3 * raw.triangles.size();
+  return build_mesh(path, raw.positions, raw.triangles, use_file_normals ? &raw.corner_normals : nullptr,
+                    options);
 }
 
 }  // namespace flexsight

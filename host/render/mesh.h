@@ -43,8 +43,9 @@ struct Mesh {
   float diameter = 0.0f;
 };
 
-// Reads an STL (binary or ASCII), PLY or OBJ file through Assimp: polygons are
-// triangulated, points and lines dropped, identical positions joined, triangles whose
+// Reads an STL (binary or ASCII), PLY (ASCII or binary) or OBJ file with the project's
+// own readers (host/render/mesh_files.h; not Assimp, which crashes and hangs on
+// malformed files): polygons are cut into triangle fans, points and lines dropped, identical positions joined, triangles whose
 // corners coincide dropped. Throws InputError naming `path` when it does not exist,
 // cannot be read or parsed, or has no triangle.
 Mesh load_mesh(const std::string& path, const MeshOptions& options = {});
@@ -52,7 +53,7 @@ Mesh load_mesh(const std::string& path, const MeshOptions& options = {});
 // A mesh from positions and triangles given in memory (test shapes, the bin's walls),
 // with the same joining, normals, box and diameter as load_mesh. `source` names it in
 // messages; throws InputError naming it for an index out of range, a position that is
-// not finite, or no triangle left.
+// not finite or has a coordinate beyond 1e9 (load_mesh too), or no triangle left.
 Mesh make_mesh(const std::string& source, std::vector<Eigen::Vector3f> positions,
                std::vector<std::array<std::uint32_t, 3>> triangles,
                const MeshOptions& options = {});

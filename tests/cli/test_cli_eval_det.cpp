@@ -288,6 +288,9 @@ TEST_F(EvalDetCli, RejectsBadDetectionFiles) {
   expect_rejected(command(results_with(0, "image_id", "999")), "entry 0: image_id 999 is not an image");
   // Python's json.dump writes float("nan") as a bare NaN.
   expect_rejected(command(results_with(1, "score", "NaN")), "entry 1: score is NaN");
+  // A number beyond a double (found by tests/fuzz/fuzz_detection_results's sibling
+  // fuzz_bop_json: nlohmann-json's out_of_range escaped the reader).
+  expect_rejected(command(results_with(1, "score", "1e999")), "is not valid JSON (number overflow");
   expect_rejected(command(results_with(2, "score", "1.5")), "entry 2: score 1.5 is outside [0, 1]");
   expect_rejected(command(results_with(3, "score", "\"high\"")), "entry 3: score");
   expect_rejected(command(results_with(1, "bbox", "[4, 4, -20, 16]")), "entry 1: bbox [4,4,-20,16] has a negative");

@@ -91,6 +91,16 @@ TEST(BopBadInput, InvalidJsonGivesTheParserPosition) {
                                  "is not valid JSON (parse error at line"));
 }
 
+// Found by tests/fuzz/fuzz_bop_json: nlohmann-json throws out_of_range, not
+// parse_error, for a number beyond a double, and it escaped the reader.
+TEST(BopBadInput, ANumberBeyondADoubleIsInvalidJson) {
+  BrokenFixture broken;
+  broken.replace("scene_camera.json", "\"mode\": 0}", "\"mode\": 1e999}");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                 "000001/scene_camera.json",
+                                 "is not valid JSON (number overflow"));
+}
+
 TEST(BopBadInput, DepthScaleIsRequiredBesideDepthImages) {
   BrokenFixture broken;
   broken.replace("scene_camera.json", ", \"depth_scale\": 0.1", "");

@@ -160,3 +160,102 @@ TEST_F(OpenCvCalibration, RejectsMalformedFiles) {
   EXPECT_NE(error_of([&] { read_stereo_camera(broken_yaml); }).find(broken_yaml),
             std::string::npos);
 }
+
+// Found by tests/fuzz/fuzz_opencv_camera: a size that is not a number ("*4", a YAML
+// alias OpenCV does not resolve) read as INT_MAX rows, and OpenCV then allocated
+// INT_MAX x 4 doubles (64 GB) for a 200-byte file. The size is checked first now.
+TEST_F(OpenCvCalibration, RejectsASizeThatIsNotANumberBeforeAllocating) {
+  const std::string path = (dir_ / "alias_rows.yml").string();
+  std::ofstream(path) << "%YAML:1.0\n---\nQ: !!opencv-matrix\n   rows: *4\n   cols: 4\n   dt: d\n"
+                         "   data: [ 1., 0., 0., -99.5, 0., 1., 0., -93.5 ]\nunit: mm\n";
+  const std::string error = error_of([&] { read_stereo_camera(path); });
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("rows and cols must be whole numbers"), std::string::npos) << error;
+  const std::string huge = (dir_ / "huge.yml").string();
+  std::ofstream(huge) << "%YAML:1.0\n---\nQ: !!opencv-matrix\n   rows: 2000000000\n   cols: 4\n   dt: d\n"
+                         "   data: [ 1. ]\n";
+  EXPECT_NE(error_of([&] { read_stereo_camera(huge); }).find("expected 4x4"), std::string::npos);
+  // A top level that is a list, not a map: OpenCV's lookup by name asserts.
+  const std::string list = (dir_ / "list.yml").string();
+  std::ofstream(list) << "%YAML:1.0\n---\n- Q\n- 1\n";
+  EXPECT_NE(error_of([&] { read_stereo_camera(list); }).find("is not OpenCV YAML/XML of named values"),
+            std::string::npos);
+}
+
+// Found by tests/fuzz/fuzz_opencv_camera: on this malformed file OpenCV's parser throws
+// std::length_error, not cv::Exception, and it escaped the reader.
+TEST(OpenCvCalibrationFuzzFinding, ALengthErrorInsideOpenCvIsAnInputError) {
+  const std::string path = std::string(FLEXSIGHT_TEST_DATA_DIR) + "/calib/fuzz_opencv_length_error.yml";
+  const std::string error = error_of([&] { read_opencv_camera(path); });
+  EXPECT_NE(error.find(path), std::string::npos) << error;
+  EXPECT_NE(error.find("is not valid OpenCV YAML/XML"), std::string::npos) << error;
+}
+
+// Found by tests/fuzz/fuzz_opencv_camera: Debian's OpenCV 4.6 FileStorage never returns
+// on these files (tests/fuzz/known). read_opencv_camera checks a file's shape before
+// OpenCV parses it and refuses them; a regression shows as this test timing out.
+TEST(OpenCvCalibrationFuzzFinding, FilesThatHangOpenCvAreRefusedBeforeItParsesThem) {
+  for (const char* name : {"opencv_camera_hang_1.yml", "opencv_camera_hang_2.yml"}) {
+    const std::string path = std::string(FLEXSIGHT_SOURCE_DIR) + "/tests/fuzz/known/" + name;
+    ASSERT_TRUE(fs::is_regular_file(path)) << path;
+    const std::string error = error_of([&] { read_opencv_camera(path); });
+    EXPECT_EQ(error.rfind(path + ": is not valid OpenCV YAML/XML (line ", 0), 0u) << error;
+    // read_stereo_camera takes them for Middlebury ("cam0") and KITTI ("P0:") files.
+    EXPECT_EQ(error_of([&] { read_stereo_camera(path); }).rfind(path + ": ", 0), 0u);
+  }
+}
+
+// The pre-check's rules, each on a small file; and what OpenCV itself writes (YAML and
+// XML above, JSON here) still reads.
+TEST_F(OpenCvCalibration, ThePreCheckRefusesWhatOpenCvDoesNotWrite) {
+  const std::string good = "Q: !!opencv-matrix\n   rows: 4\n   cols: 4\n   dt: d\n"
+                           "   data: [ 1., 0., 0., -99.5, 0., 1., 0., -93.5, 0., 0., 0., 750.,\n"
+                           "       0., 0., 0.0125, 0. ]\nunit: mm\n";
+  const auto read_text = [&](const std::string& name, const std::string& text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return error_of([&] { read_opencv_camera(path); });
+  };
+  EXPECT_EQ(read_text("good.yml", "%YAML:1.0\n---\n" + good), "");
+  EXPECT_EQ(read_text("good_crlf.yml", "%YAML 1.0\n# a comment: [ {\n" + good), "");
+  const struct {
+    const char* text;
+    const char* why;
+  } bad[] = {
+      {"%YAML:1.5\n", "line 1: expected %YAML:1.0"},
+      {"%YAML:1.0\n---%YAML:1.0\n", "line 2: a second document"},
+      {"%YAML:1.0\n---\n--- x\n", "line 3: a second document"},
+      {"%YAML:1.0\n%TAG ! x\n", "line 2: a directive"},
+      {"%YAML:1.0\nQ: !!opencam0c{v-matrix-A\n", "line 2: a tag other than"},
+      {"%YAML:1.0\nQ: !!opencv-4matrix\n", "line 2: a tag other than"},
+      {"%YAML:1.0\nQ: [ 1, 2\n", "a '[' never closed"},
+      {"%YAML:1.0\nQ: 1 ]\n", "line 2: an unmatched ']'"},
+      {"%YAML:1.0\nQ: \"1\n", "line 2: a quote not closed"},
+      {"%YAML:1.0\nQ: 1\n\tR: 2\n", "line 3: a tab in the indentation"},
+      {"%YAML:1.0\nunit: m\xc3\xa9tre\n", "line 2: a byte that is not printable ASCII"},
+      {"%YAML:1.0\nQ:\x01\n", "line 2: a byte that is not printable ASCII"},
+      {"<?xml version=\"1.0\"?>\n<opencv_storage><Q>1</R></opencv_storage>\n", "line 2: a closing tag"},
+      {"<?xml version=\"1.0\"?>\n<opencv_storage>\n<Q>1</Q>\n", "element <opencv_storage> never closed"},
+      {"<?xml version=\"1.0\"?>\n<!DOCTYPE x>\n<a/>", "line 2: a DOCTYPE"},
+      {"<?xml version=\"1.0\"?>\n<a/><b/>", "line 2: a second root"},
+      {"{ \"Q\": [ 1, 2 }", "an unmatched '}'"},
+      {"{ \"Q\": \"1 }\n", "a string not closed"},
+  };
+  for (const auto& c : bad) {
+    const std::string error = read_text(std::string("bad") + (c.text[0] == '<' ? ".xml" : ".yml"), c.text);
+    EXPECT_NE(error.find("is not valid OpenCV YAML/XML ("), std::string::npos) << c.text << "\n" << error;
+    EXPECT_NE(error.find(c.why), std::string::npos) << c.text << "\n" << error;
+  }
+  EXPECT_NE(read_text("plain.yml", good).find("begins with neither %YAML, <?xml nor {"), std::string::npos);
+  EXPECT_NE(read_text("big.yml", "%YAML:1.0\n# " + std::string(1 << 20, 'x') + "\n" + good)
+                .find("too large for a calibration"),
+            std::string::npos);
+
+  const std::string json = (dir_ / "stereo.json").string();
+  {
+    cv::FileStorage storage(json, cv::FileStorage::WRITE);
+    storage << "Q" << Q_ << "unit" << "m";
+  }
+  EXPECT_EQ(error_of([&] { read_opencv_camera(json); }), "");
+  EXPECT_EQ(read_opencv_camera(json).unit, "m");
+}
