@@ -112,6 +112,7 @@ StereoCamera StereoCamera::resized_to(int image_width, int image_height) const {
 // docs/reliability.md finding 4). So a file goes to it only when it has the shape that
 // cv::FileStorage writes: at most 1 MiB of printable ASCII; YAML beginning with
 // "%YAML:1.x", an optional "---" second line, no other directive or document marker,
+// the first name at the start of its line,
 // only OpenCV's own !!opencv-... tags, quotes closed on their line and brackets
 // balanced; XML beginning with "<?xml" with its elements balanced and no DOCTYPE or
 // CDATA; JSON beginning with "{" with its strings closed and brackets balanced. What
@@ -126,6 +127,7 @@ constexpr int kMaxNesting = 32;
 void check_yaml_storage(const std::string& path, const std::string& text) {
   std::vector<char> open;  // brackets not closed yet
   size_t line_number = 0;
+  bool seen_content = false;
   for (size_t pos = 0; pos < text.size();) {
     size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
@@ -149,6 +151,13 @@ void check_yaml_storage(const std::string& path, const std::string& text) {
       refuse_storage(path, line_number, "a second document");
     }
     if (!line.empty() && line[0] == '\t') refuse_storage(path, line_number, "a tab in the indentation");
+    // OpenCV writes its top-level names at the start of a line; a first name indented,
+    // then one less indented, hangs its parser (tests/fuzz/known/opencv_camera_hang_3.yml).
+    const size_t content = line.find_first_not_of(' ');
+    if (!seen_content && content != std::string::npos && line[content] != '#') {
+      if (content != 0) refuse_storage(path, line_number, "the first name is indented");
+      seen_content = true;
+    }
     for (size_t i = 0; i < line.size(); ++i) {
       const char c = line[i];
       if (c == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t')) break;  // a comment

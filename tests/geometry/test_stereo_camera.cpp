@@ -195,7 +195,8 @@ TEST(OpenCvCalibrationFuzzFinding, ALengthErrorInsideOpenCvIsAnInputError) {
 // on these files (tests/fuzz/known). read_opencv_camera checks a file's shape before
 // OpenCV parses it and refuses them; a regression shows as this test timing out.
 TEST(OpenCvCalibrationFuzzFinding, FilesThatHangOpenCvAreRefusedBeforeItParsesThem) {
-  for (const char* name : {"opencv_camera_hang_1.yml", "opencv_camera_hang_2.yml"}) {
+  for (const char* name : {"opencv_camera_hang_1.yml", "opencv_camera_hang_2.yml",
+                           "opencv_camera_hang_3.yml"}) {
     const std::string path = std::string(FLEXSIGHT_SOURCE_DIR) + "/tests/fuzz/known/" + name;
     ASSERT_TRUE(fs::is_regular_file(path)) << path;
     const std::string error = error_of([&] { read_opencv_camera(path); });
@@ -232,6 +233,8 @@ TEST_F(OpenCvCalibration, ThePreCheckRefusesWhatOpenCvDoesNotWrite) {
       {"%YAML:1.0\nQ: 1 ]\n", "line 2: an unmatched ']'"},
       {"%YAML:1.0\nQ: \"1\n", "line 2: a quote not closed"},
       {"%YAML:1.0\nQ: 1\n\tR: 2\n", "line 3: a tab in the indentation"},
+      // The shortest form of opencv_camera_hang_3.yml: OpenCV's parser never returns.
+      {"%YAML:1.0\n# c\n   ros: 4\nQ:\n--\n", "line 3: the first name is indented"},
       {"%YAML:1.0\nunit: m\xc3\xa9tre\n", "line 2: a byte that is not printable ASCII"},
       {"%YAML:1.0\nQ:\x01\n", "line 2: a byte that is not printable ASCII"},
       {"<?xml version=\"1.0\"?>\n<opencv_storage><Q>1</R></opencv_storage>\n", "line 2: a closing tag"},
