@@ -125,8 +125,8 @@ int run_eval_pick_command(std::vector<std::string> args) {
     std::cerr << "eval-pick: bin " << (i + 1) << " of " << bins.size() << " (" << name << ")\n";
     const StereoPair pair = load_stereo_pair(files.left, files.right);
     const StereoCamera rig = read_stereo_camera(files.calib).resized_to(pair.left.cols, pair.left.rows);
-    pipeline.set_ndisp(pick_ndisp(options, files.calib));
     settings.stereo.ndisp = pick_ndisp(options, files.calib);
+    pipeline.set_ndisp(settings.stereo.ndisp);
     validate_inputs(pair.left, pair.right, settings.stereo);
     const cv::Mat texture = files.left_passive.empty() ? cv::Mat() : load_rgb8(files.left_passive);
     const PickResult result = pipeline.run(pair.left, pair.right, rig, texture);

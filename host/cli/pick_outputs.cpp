@@ -1,6 +1,7 @@
 #include "host/cli/pick_outputs.h"
 
 #include <nlohmann/json.hpp>
+#include <utility>
 #include <opencv2/imgproc.hpp>
 
 #include "host/pose/pose_drawing.h"
@@ -11,18 +12,25 @@ namespace {
 // Picks ranked below this pick_score are left out of the picture (still in the JSON).
 constexpr double kPictureMinPickScore = 0.5;
 
+using Json = nlohmann::ordered_json;
+
+// R row-major and t (mm) as JSON arrays.
+std::pair<Json, Json> pose_json(const Pose& pose) {
+  Json R = Json::array(), t = Json::array();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) R.push_back(pose.R(i, j));
+    t.push_back(pose.t(i));
+  }
+  return {R, t};
+}
+
 }  // namespace
 
 std::string pick_json(const PickResult& result, const PickInputsDescription& inputs) {
-  using Json = nlohmann::ordered_json;
   Json picks = Json::array();
   int rank = 1;
   for (const PickCandidate& c : result.picks) {
-    Json R = Json::array(), t = Json::array();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) R.push_back(c.pose.R(i, j));
-      t.push_back(c.pose.t(i));
-    }
+    const auto [R, t] = pose_json(c.pose);
     picks.push_back({{"rank", rank++},
                      {"obj_id", c.obj_id},
                      {"pick_score", c.pick_score},
@@ -39,11 +47,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
   }
   Json proposals = Json::array();
   for (const PickCandidate& c : result.proposals) {
-    Json R = Json::array(), t = Json::array();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) R.push_back(c.pose.R(i, j));
-      t.push_back(c.pose.t(i));
-    }
+    const auto [R, t] = pose_json(c.pose);
     proposals.push_back({{"obj_id", c.obj_id},
                          {"pose_score", c.pose_score},
                          {"detection_score", c.detection_score},

@@ -124,6 +124,26 @@ constexpr int kMaxNesting = 32;
   throw InputError(path, "is not valid OpenCV YAML/XML (line " + std::to_string(line) + ": " + why + ")");
 }
 
+enum class BracketStep { kNone, kOpened, kClosed };
+
+// Follows `c` in the stack of open brackets (JSON's and YAML flow style's [ ] { }),
+// refusing nesting beyond kMaxNesting and a bracket closed that was not open.
+BracketStep track_bracket(std::vector<char>& open, char c, const std::string& path, size_t line_number) {
+  if (c == '[' || c == '{') {
+    open.push_back(c);
+    if (open.size() > size_t(kMaxNesting)) refuse_storage(path, line_number, "brackets nested too deep");
+    return BracketStep::kOpened;
+  }
+  if (c == ']' || c == '}') {
+    if (open.empty() || open.back() != (c == ']' ? '[' : '{')) {
+      refuse_storage(path, line_number, std::string("an unmatched '") + c + "'");
+    }
+    open.pop_back();
+    return BracketStep::kClosed;
+  }
+  return BracketStep::kNone;
+}
+
 void check_yaml_storage(const std::string& path, const std::string& text) {
   std::vector<char> open;  // brackets not closed yet
   size_t line_number = 0;
@@ -179,14 +199,8 @@ void check_yaml_storage(const std::string& path, const std::string& text) {
           }
         }
         if (!known) refuse_storage(path, line_number, "a tag other than OpenCV's !!opencv-...");
-      } else if (c == '[' || c == '{') {
-        open.push_back(c);
-        if (open.size() > size_t(kMaxNesting)) refuse_storage(path, line_number, "brackets nested too deep");
-      } else if (c == ']' || c == '}') {
-        if (open.empty() || open.back() != (c == ']' ? '[' : '{')) {
-          refuse_storage(path, line_number, std::string("an unmatched '") + c + "'");
-        }
-        open.pop_back();
+      } else {
+        track_bracket(open, c, path, line_number);
       }
     }
   }
@@ -281,14 +295,7 @@ void check_json_storage(const std::string& path, const std::string& text) {
       }
       if (close >= text.size() || text[close] != '"') refuse_storage(path, line_number, "a string not closed on its line");
       i = close;
-    } else if (c == '[' || c == '{') {
-      open.push_back(c);
-      if (open.size() > size_t(kMaxNesting)) refuse_storage(path, line_number, "brackets nested too deep");
-    } else if (c == ']' || c == '}') {
-      if (open.empty() || open.back() != (c == ']' ? '[' : '{')) {
-        refuse_storage(path, line_number, std::string("an unmatched '") + c + "'");
-      }
-      open.pop_back();
+    } else if (track_bracket(open, c, path, line_number) == BracketStep::kClosed) {
       if (open.empty() && text.find_first_not_of(" \t\r\n", i + 1) != std::string::npos) {
         refuse_storage(path, line_number, "text after the top-level object");
       }
