@@ -299,8 +299,9 @@ std::string stereo_params_help() {
          "                                (window steps and iterations), or active for\n"
          "                                projector-lit scenes (accurate, with higher cost\n"
          "                                truncations, an 8-px left/right tolerance and no\n"
-         "                                background bound in the hole median); the options\n"
-         "                                below override it\n";
+         "                                background bound in the hole median), or\n"
+         "                                active-fast (active's cost, fast's steps); the\n"
+         "                                options below override it\n";
   for (const ParamOption& option : param_options()) {
     out << "  --" << option.name << " VALUE";
     // A name too long for the column gets its help on the next line, as --device's does.

@@ -35,6 +35,9 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const std::string threads = take_option(args, "--threads");
   const std::string tile = take_option(args, "--tile");
   const std::string classes = take_option(args, "--classes-per-box");
+  const std::string downscale = take_option(args, "--stereo-downscale");
+  const std::string half_turns = take_option(args, "--half-turns");
+  const double retry_below = take_number_option(args, "--retry-below", settings.pose.retry_below_score);
   settings.quiet = take_flag(args, "--quiet");
   if (!(score >= 0.0 && score <= 1.0)) throw InputError("option --score", "must lie in [0, 1]");
   settings.detector.score_threshold = static_cast<float>(score);
@@ -42,6 +45,15 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   if (!classes.empty()) {
     settings.classes_per_box = static_cast<int>(parse_whole_number("--classes-per-box", classes, 1, 100));
   }
+  if (!downscale.empty()) {
+    settings.stereo_downscale = static_cast<int>(parse_whole_number("--stereo-downscale", downscale, 1, 8));
+  }
+  if (!half_turns.empty()) {
+    if (half_turns != "on" && half_turns != "off") throw InputError("option --half-turns", "must be on or off");
+    settings.pose.try_half_turns = half_turns == "on";
+  }
+  if (!(retry_below >= 0.0 && retry_below <= 1.0)) throw InputError("option --retry-below", "must lie in [0, 1]");
+  settings.pose.retry_below_score = retry_below;
   if (tile == "off") {
     settings.detection_tile = 0;
   } else if (!tile.empty() && tile != "auto") {
@@ -69,6 +81,13 @@ std::string pick_options_help() {
           "                     detector proposes, the pose's fit decides)\n"
           "  --classes-per-box K  the detector's K best classes at a box are each posed, the\n"
           "                     best fit kept (default 5; 1: the detector decides alone)\n"
+          "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
+          "                     the matcher's time falls with N squared; detection and\n"
+          "                     pose keep the full image\n"
+          "  --half-turns on|off  also fit each candidate pose turned 180 degrees about\n"
+          "                     the part's axes (default on; off: a quarter of the ICP runs)\n"
+          "  --retry-below S    when the best candidates of a box score below S, fit every\n"
+          "                     other candidate too (default 0.5; 0: never)\n"
           "  --threads N        parts posed at once (default: all cores)\n"
           "  --quiet            no progress lines\n"
           "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/io/input_error.h"
+#include "host/stereo/disparity_upsampling.h"
 
 namespace flexsight {
 namespace {
@@ -26,6 +27,21 @@ constexpr double kVisibilityToleranceMm = 5.0;
 // Boxes overlapping more than this are one part (proposed as several classes).
 constexpr double kDuplicateIou = 0.5;
 
+
+// The matcher on the pair shrunk by `downscale` (area averaging), its disparity brought back
+// to the pair's size along the matcher's planes (host/stereo/disparity_upsampling.h).
+cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv::Mat& right, StereoParams params,
+                           int downscale, const ProgressCallback& progress, std::string* path) {
+  if (downscale <= 1) return stereo.run(left, right, params, progress, path).disparity;
+  const cv::Size small(std::max(1, left.cols / downscale), std::max(1, left.rows / downscale));
+  cv::Mat left_small, right_small;
+  cv::resize(left, left_small, small, 0, 0, cv::INTER_AREA);
+  cv::resize(right, right_small, small, 0, 0, cv::INTER_AREA);
+  const double to_full = static_cast<double>(left.cols) / small.width;
+  params.ndisp = std::max(2, static_cast<int>(std::ceil(params.ndisp / to_full)));
+  const StereoResult result = stereo.run(left_small, right_small, params, progress, path);
+  return upsample_disparity(result.disparity, result.planes_left, left.size());
+}
 
 }  // namespace
 
@@ -57,7 +73,8 @@ PickPipeline::PickPipeline(const PickSettings& settings) : impl_(std::make_uniqu
 void PickPipeline::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
 
 cv::Mat PickPipeline::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
-  return impl_->stereo.run(left_rgb8, right_rgb8, impl_->settings.stereo, ProgressCallback(), nullptr).disparity;
+  return disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, impl_->settings.stereo,
+                            impl_->settings.stereo_downscale, ProgressCallback(), nullptr);
 }
 
 TilingPlan PickPipeline::detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const {
@@ -99,8 +116,8 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   auto start = Clock::now();
   ProgressCallback progress;
   if (!settings.quiet) progress = [](const std::string& stage) { std::cerr << "  stereo: " << stage << "\n"; };
-  const StereoResult stereo = impl_->stereo.run(left_rgb8, right_rgb8, settings.stereo, progress, &result.stereo_path);
-  result.disparity = stereo.disparity;
+  result.disparity = disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, settings.stereo,
+                                        settings.stereo_downscale, progress, &result.stereo_path);
   result.seconds.stereo = seconds_since(start);
 
   start = Clock::now();

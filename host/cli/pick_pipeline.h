@@ -31,6 +31,11 @@ struct PickSettings {
   int detection_tile = -1;
   // Classes posed per box (pose_proposals in host/pick/pick_ranking.h), the best fit kept.
   int classes_per_box = 5;
+  // The pair is matched at 1/stereo_downscale of its size and the disparity brought back
+  // along the matcher's planes (host/stereo/disparity_upsampling.h: no depth is mixed
+  // across a part's edge): the matcher's time falls with the square of it; detection and
+  // pose keep the full image.
+  int stereo_downscale = 1;
   bool quiet = false;
 };
 

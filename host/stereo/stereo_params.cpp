@@ -152,8 +152,8 @@ bool apply_stereo_preset(const std::string& name, StereoParams& params) {
     knobs = accurate_preset();
   } else if (name == "fast") {
     knobs = fast_preset();
-  } else if (name == "active") {
-    knobs = accurate_preset();
+  } else if (name == "active" || name == "active-fast") {
+    knobs = name == "active" ? accurate_preset() : fast_preset();
     const ActiveCost active;
     params.tau_color = active.tau_color;
     params.tau_gradient = active.tau_gradient;
@@ -166,6 +166,6 @@ bool apply_stereo_preset(const std::string& name, StereoParams& params) {
   return true;
 }
 
-const char* stereo_preset_names() { return "accurate, fast, active"; }
+const char* stereo_preset_names() { return "accurate, fast, active, active-fast"; }
 
 }  // namespace flexsight

@@ -163,6 +163,15 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 12 -o " +
            d + "existing.json",
        "--tile"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --stereo-downscale 0 -o " + d + "existing.json",
+       "--stereo-downscale"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --half-turns maybe -o " + d + "existing.json",
+       "--half-turns"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --retry-below 2 -o " + d + "existing.json",
+       "--retry-below"},
       // eval-pick
       {"eval-pick " + d + "empty_folder --out " + d + "pick_out --templates " + d + "junk.tpl", d + "empty_folder"},
       {"eval-pick " + d + "nowhere --out " + d + "pick_out --templates " + d + "junk.tpl", d + "nowhere"},

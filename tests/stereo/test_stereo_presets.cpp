@@ -131,6 +131,31 @@ TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   EXPECT_TRUE(args.empty());
 }
 
+// pick's speed setting on projector-lit pairs: the active preset's cost with the fast
+// preset's window steps and iterations.
+TEST(StereoPresets, ActiveFastIsTheActiveCostWithTheFastKnobs) {
+  StereoParams fast = unusual_params();
+  ASSERT_TRUE(apply_stereo_preset("fast", fast));
+  StereoParams active = unusual_params();
+  ASSERT_TRUE(apply_stereo_preset("active", active));
+  StereoParams p = unusual_params();
+  ASSERT_TRUE(apply_stereo_preset("active-fast", p));
+  EXPECT_EQ(p.tau_color, active.tau_color);
+  EXPECT_EQ(p.tau_gradient, active.tau_gradient);
+  EXPECT_EQ(p.lr_tolerance, active.lr_tolerance);
+  EXPECT_TRUE(std::isinf(p.median_background_margin));
+  EXPECT_EQ(p.window_step, fast.window_step);
+  EXPECT_EQ(p.window_step_fine, fast.window_step_fine);
+  EXPECT_EQ(p.window_step_finest, fast.window_step_finest);
+  EXPECT_EQ(p.iterations_fine, fast.iterations_fine);
+  EXPECT_EQ(p.iterations_finest, fast.iterations_finest);
+  EXPECT_NE(p.window_step, active.window_step) << "the knobs are fast's, not accurate's";
+  expect_same_non_knob_fields(p, active);
+  StereoParams checked;
+  ASSERT_TRUE(apply_stereo_preset("active-fast", checked));
+  EXPECT_NO_THROW(checked.check());
+}
+
 TEST(StereoPresets, AnUnknownNameChangesNothing) {
   StereoParams p = unusual_params();
   EXPECT_FALSE(apply_stereo_preset("quick", p));
