@@ -35,6 +35,7 @@ class ReferenceStageSet {
     return Array<T>(count);
   }
   Array<float> upload(std::vector<float> values, const char* /*what*/) { return values; }
+  Array<std::uint8_t> upload(std::vector<std::uint8_t> values, const char* /*what*/) { return values; }
   std::vector<float> download(const Array<float>& values) { return values; }
   Field field(int width, int height, int /*view*/) {
     Field field;

@@ -179,6 +179,8 @@ const std::vector<ParamOption>& param_options() {
                    "their neighbours' largest disparity step (px)"),
       integer_option("raw-speckle-size", &StereoParams::raw_speckle_size,
                      "raw segments smaller than this fail the left/right check (px, 0 = off)"),
+      float_option("textureless-spread", &StereoParams::textureless_spread,
+                   "windows with a grey spread below this fail the check (0 = off)"),
       // clang-format on
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {

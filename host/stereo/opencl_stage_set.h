@@ -42,6 +42,9 @@ class OpenClStageSet : public OpenClStages {
   Array<float> upload(const std::vector<float>& values, const char* what) {
     return Buffer<float>(context(), values, what);
   }
+  Array<std::uint8_t> upload(const std::vector<std::uint8_t>& values, const char* what) {
+    return Buffer<std::uint8_t>(context(), values, what);
+  }
   std::vector<float> download(const Array<float>& values) { return values.read(); }
   Field field(int width, int height, int view);
   Field planes_field(int width, int height, Array<float> planes) {

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "fallback/stereo/texture_mask.h"
 #include "fallback/stereo/weight_table.h"
 #include "host/stereo/pipeline_rules.h"
 #include "host/stereo/stereo_pipeline.h"
@@ -53,6 +54,9 @@ class PatchMatchSchedule {
 
   StereoResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
     validate_inputs(left_rgb8, right_rgb8, params_);
+    if (params_.textureless_spread > 0) {
+      textured_ = textured_pixel_mask(left_rgb8, params_.window, params_.textureless_spread);
+    }
     enter("pyramid");
     const int levels = pipeline_level_count(params_, left_rgb8.cols, left_rgb8.rows);
     auto start = Clock::now();
@@ -236,6 +240,7 @@ class PatchMatchSchedule {
   Floats weights_;
   Field fields_[2];
   Floats confidence_[2];  // of the current level, from the coarser one
+  std::vector<std::uint8_t> textured_;  // textured_pixel_mask of the left image (or empty)
 };
 
 // Post-processing on the finest level (Bleyer et al. 2011, Sec. 3.3, and the
@@ -260,6 +265,12 @@ void PatchMatchSchedule<StageSet>::post_process() {
     stages_.large_segment_mask(raw[PMS_VIEW_LEFT], width, height, params_.speckle_range,
                                params_.raw_speckle_size, large);
     stages_.mask_and(large, width, height, consistent);
+  }
+  if (!textured_.empty()) {
+    // A window without texture matches about anywhere, in both views alike, so its
+    // consistency means nothing: it is filled from its textured neighbours' planes.
+    const Bytes textured = stages_.upload(textured_, "textured pixels");
+    stages_.mask_and(textured, width, height, consistent);
   }
   Floats filled_planes = stages_.template array<float>(4 * pixels, "filled planes");
   stages_.fill_inconsistent(fields_[PMS_VIEW_LEFT].planes, consistent, width, height,

@@ -158,6 +158,12 @@ struct StereoParams {
   // wrong the same way. 20 px, inside a plateau from 8 to 50 px, takes about 0.2 points
   // off.
   int raw_speckle_size = 20;
+  // Before the filling, pixels whose support window (window x window) has a grey-level
+  // standard deviation below this many levels count as failing the left/right check
+  // (0 = off; fallback/stereo/texture_mask.h): where nothing is textured, a match is noise
+  // that both views can agree on, and the fill carries the textured neighbours' plane
+  // in instead. The active preset sets it: the table outside a projector's field.
+  float textureless_spread = 0.0f;
   // Random generator key: same seed, same bytes.
   std::uint32_t seed = 1;
   // Worker threads for the reference path (0 = all cores). Never changes the result.

@@ -102,6 +102,8 @@ TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   EXPECT_EQ(p.tau_gradient, 50.0f);
   EXPECT_EQ(p.lr_tolerance, 8.0f);
   EXPECT_TRUE(std::isinf(p.median_background_margin));
+  EXPECT_EQ(p.textureless_spread, 4.0f);
+  EXPECT_EQ(p.fill_max_extrapolation, 0.0f);
   EXPECT_EQ(p.window_step, defaults.window_step);
   EXPECT_EQ(p.window_step_fine, defaults.window_step_fine);
   EXPECT_EQ(p.window_step_finest, defaults.window_step_finest);
@@ -144,6 +146,8 @@ TEST(StereoPresets, ActiveFastIsTheActiveCostWithTheFastKnobs) {
   EXPECT_EQ(p.tau_gradient, active.tau_gradient);
   EXPECT_EQ(p.lr_tolerance, active.lr_tolerance);
   EXPECT_TRUE(std::isinf(p.median_background_margin));
+  EXPECT_EQ(p.textureless_spread, active.textureless_spread);
+  EXPECT_EQ(p.fill_max_extrapolation, active.fill_max_extrapolation);
   EXPECT_EQ(p.window_step, fast.window_step);
   EXPECT_EQ(p.window_step_fine, fast.window_step_fine);
   EXPECT_EQ(p.window_step_finest, fast.window_step_finest);

@@ -95,6 +95,8 @@ std::vector<PipelineCase> pipeline_cases() {
       }));
   add("ppms_w11_refill_every_pixel", ppms([](StereoParams& p) { p.refill_unsure_only = false; }));
   add("pms_w11_refill_every_pixel", pms([](StereoParams& p) { p.refill_unsure_only = false; }));
+  // The textured-pixel mask (uploaded from the host) gating the check before the fill.
+  add("ppms_w11_textureless_gate", ppms([](StereoParams& p) { p.textureless_spread = 12.0f; }));
   return cases;
 }
 
@@ -179,6 +181,24 @@ TEST(PipelinePresets, FastPresetMatchesTheReferenceByteForByte) {
   const StereoResult expected = run_stereo(crop.left, crop.right, params);
   const StereoResult actual = matcher().run(crop.left, crop.right, params);
   expect_same_outputs(expected, actual);
+}
+
+// The projector-lit preset: raised truncations, the textureless gate, every vote, no
+// extrapolation in the fill.
+TEST(PipelinePresets, ActivePresetMatchesTheReferenceByteForByte) {
+  const testing_support::FixtureCrop crop = testing_support::fixture_crop();
+  StereoParams params;
+  ASSERT_TRUE(apply_stereo_preset("active", params));
+  ASSERT_GT(params.textureless_spread, 0.0f);
+  params.ndisp = 32;
+  params.coarsest_width = 40;
+  const StereoResult expected = run_stereo(crop.left, crop.right, params);
+  const StereoResult actual = matcher().run(crop.left, crop.right, params);
+  expect_same_outputs(expected, actual);
+  // The gate found windows without texture on the crop and changed what was filled.
+  StereoParams ungated = params;
+  ungated.textureless_spread = 0.0f;
+  EXPECT_FALSE(testing_support::same_bytes(expected.planes_left, run_stereo(crop.left, crop.right, ungated).planes_left));
 }
 
 // The camera runs the matcher and the detector's post-processing on one device
