@@ -1,5 +1,6 @@
 // flexsight eval-pick: `pick` on every bin of a `synth bin` folder, scored against the
 // bins' ground truth (host/cli/pick_scoring.h, pick_report.h; docs/pick.md).
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
@@ -20,6 +21,13 @@ namespace flexsight {
 namespace {
 
 namespace fs = std::filesystem;
+
+// "12.3 s": the progress line's time, to a tenth of a second.
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", seconds);
+  return text;
+}
 
 void print_help() {
   std::cout << "usage: flexsight eval-pick BINS_DIR --out DIR --templates T [options]\n"
@@ -141,7 +149,7 @@ int run_eval_pick_command(std::vector<std::string> args) {
         score_pick_on_bin(files.dir, result, no_pattern, models, settings.cad, models_info));
     const BinPickScore& score = report.bins.back();
     std::cerr << "  " << score.posed_visib50 << " of " << score.targets_visib50 << " parts >= 50 % visible posed; top pick "
-              << (score.top1_correct ? "right" : "wrong") << "; " << score.seconds.total() << " s\n";
+              << (score.top1_correct ? "right" : "wrong") << "; " << seconds_text(score.seconds.total()) << "\n";
     const fs::path staging(staged.path());
     dataset_files::write_text((staging / (name + ".json")).string(),
                               pick_json(result, {files.left, files.right, files.calib, settings.model,
