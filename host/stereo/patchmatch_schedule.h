@@ -29,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-#include "fallback/stereo/texture_mask.h"
+#include "host/stereo/texture_mask.h"
 #include "fallback/stereo/weight_table.h"
 #include "host/stereo/pipeline_rules.h"
 #include "host/stereo/stereo_pipeline.h"

@@ -160,7 +160,7 @@ struct StereoParams {
   int raw_speckle_size = 20;
   // Before the filling, pixels whose support window (window x window) has a grey-level
   // standard deviation below this many levels count as failing the left/right check
-  // (0 = off; fallback/stereo/texture_mask.h): where nothing is textured, a match is noise
+  // (0 = off; host/stereo/texture_mask.h): where nothing is textured, a match is noise
   // that both views can agree on, and the fill carries the textured neighbours' plane
   // in instead. The active preset sets it: the table outside a projector's field.
   float textureless_spread = 0.0f;

@@ -1,11 +1,11 @@
-// textured_pixel_mask (fallback/stereo/texture_mask.h): which pixels' windows have
+// textured_pixel_mask (host/stereo/texture_mask.h): which pixels' windows have
 // texture to match; the active preset's gate before the fill.
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
 #include <stdexcept>
 
-#include "fallback/stereo/texture_mask.h"
+#include "host/stereo/texture_mask.h"
 
 namespace flexsight {
 namespace {
@@ -49,6 +49,17 @@ TEST(TextureMask, HueAloneIsNoTexture) {
   image.colRange(3, 6).setTo(cv::Scalar(90, 60, 30));
   for (std::uint8_t m : textured_pixel_mask(image, 3, 0.5f)) EXPECT_EQ(m, 0);
   for (std::uint8_t m : textured_pixel_mask(image, 3, 0.0f)) EXPECT_EQ(m, 1) << "a floor of 0 keeps every pixel";
+}
+
+// Bright greys (channel sums of 600 and 750) are still told apart: the sum of the three
+// channels must not saturate at 8 bits.
+TEST(TextureMask, BrightGreysAreNotSaturated) {
+  cv::Mat image(8, 20, CV_8UC3, cv::Scalar::all(200));
+  image.colRange(10, 20).setTo(cv::Scalar::all(250));
+  const auto mask = textured_pixel_mask(image, 5, 4.0f);
+  EXPECT_EQ(mask[4 * 20 + 9], 1);
+  EXPECT_EQ(mask[4 * 20 + 10], 1);
+  EXPECT_EQ(mask[4 * 20 + 2], 0);
 }
 
 TEST(TextureMask, RefusesAnImageThatIsNotRgb8) {

@@ -1,6 +1,7 @@
 #pragma once
 // Which pixels have texture to match: the support window's intensity spread against a
-// floor. Shared by both paths (the schedule uploads its bytes), so they stay identical.
+// floor. Computed on the host for both paths (the schedule uploads its bytes), so they
+// stay identical.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
