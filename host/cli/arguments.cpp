@@ -299,9 +299,11 @@ std::string stereo_params_help() {
   std::ostringstream out;
   out << "  --preset NAME                 speed/accuracy settings: accurate (default) or fast\n"
          "                                (window steps and iterations), or active for\n"
-         "                                projector-lit scenes (accurate, with higher cost\n"
-         "                                truncations, an 8-px left/right tolerance and no\n"
-         "                                background bound in the hole median), or\n"
+         "                                projector-lit scenes (accurate, with a 25-px\n"
+         "                                window, higher cost truncations, an 8-px\n"
+         "                                left/right tolerance, no background bound in the\n"
+         "                                hole median, plain windows failing the check and\n"
+         "                                a flat fill), or\n"
          "                                active-fast (active's cost, fast's steps); the\n"
          "                                options below override it\n";
   for (const ParamOption& option : param_options()) {

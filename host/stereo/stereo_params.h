@@ -180,9 +180,10 @@ const char* method_name(StereoMethod method);
 // is the defaults above. "fast" samples the windows more sparsely and runs one iteration
 // per finer level, about 3x faster for about 0.65 points of bad-2 (fast_preset() in
 // stereo_params.cpp says why). "active" is for projector-lit scenes (active stereo):
-// the accurate knobs, plus higher truncations of the colour and gradient terms, a wider
-// left/right tolerance and every consistent pixel voting in the hole median (the only
-// preset that touches those fields; ActiveCost in stereo_params.cpp says why). Returns false for an unknown name.
+// the accurate knobs, plus a 25-px window, higher truncations of the colour and gradient
+// terms, a wider left/right tolerance, every consistent pixel voting in the hole median,
+// the texture gate and the flat fill (the only preset that touches those fields;
+// ActiveCost in stereo_params.cpp says why). Returns false for an unknown name.
 bool apply_stereo_preset(const std::string& name, StereoParams& params);
 
 // "accurate, fast, active": for messages and --help.

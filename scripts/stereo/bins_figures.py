@@ -17,9 +17,16 @@ Pixel classes, all among the pixels with finite ground truth (inf = no surface):
          and inside the bounding box of the floor's pixels, shrunk by 4 px: the bin walls
          rise above the floor too but lie outside it in the image;
   walls  the rest of the pixels above the floor.
+A scene written by `flexsight synth bin` has BOP masks (mask_visib/*.png, one a part):
+there the parts are exactly the pixels of those masks, and floor and walls are the rest
+by the rule above (the fitted "floor" is then the table, the "walls" the bin). Either way
+"parts nocc" and "parts occ" split the parts by mask0nocc.png: "parts occ" is the parts'
+surface that the right camera does not see (a side that faces away from it, or a part
+hidden there behind a taller one), which no two-view matcher measures.
 A result pixel that is not finite counts as bad (the MiddEval3 SDK convention).
 """
 import argparse
+import glob
 import os
 import sys
 
@@ -54,7 +61,17 @@ def pixel_classes(scene):
     inside[fy.min() + 4:fy.max() - 3, fx.min() + 4:fx.max() - 3] = True
     parts = above & inside
     walls = above & ~inside
-    return gt, {"all": finite, "nocc": nocc, "parts": parts, "floor": floor, "walls": walls}
+    masks = sorted(glob.glob(os.path.join(scene, "mask_visib", "*.png")))
+    if masks:
+        import cv2
+        parts = np.zeros_like(finite)
+        for m in masks:
+            parts |= cv2.imread(m, cv2.IMREAD_GRAYSCALE) > 0
+        parts &= finite
+        floor &= ~parts
+        walls = above & ~parts
+    return gt, {"all": finite, "nocc": nocc, "parts": parts, "floor": floor, "walls": walls,
+                "parts nocc": parts & nocc, "parts occ": parts & ~nocc}
 
 
 def figures(gt, disp, classes, names=("all", "nocc", "parts", "floor")):
@@ -92,7 +109,7 @@ def main():
     else:
         for r in args.results:
             rows.append((os.path.basename(r), args.scene_or_root, r))
-    names = ("all", "nocc", "parts", "floor", "walls")
+    names = ("all", "nocc", "parts", "parts nocc", "parts occ", "floor", "walls")
     print("| result | " + " | ".join(f"{n} bad-2 | {n} avg" for n in names) + " |")
     print("|---|" + "---:|" * (2 * len(names)))
     sums = {n: [0.0, 0.0, 0] for n in names}

@@ -90,14 +90,15 @@ TEST(StereoPresets, AccurateIsTheDefaults) {
 }
 
 // The projector-lit bins' preset (docs/stereo.md, "Projector-lit bins"): the accurate
-// speed knobs, the colour and gradient truncations raised above the rendered images'
-// true-match residual, an 8-px left/right tolerance, every consistent pixel voting in the
-// hole median; nothing else moves.
+// speed knobs, a 25-px window, the colour and gradient truncations raised above the
+// rendered images' true-match residual, an 8-px left/right tolerance, every consistent
+// pixel voting in the hole median, the texture gate and the flat fill; nothing else moves.
 TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   const StereoParams defaults;
   StereoParams p = unusual_params();
   ASSERT_TRUE(apply_stereo_preset("fast", p));
   ASSERT_TRUE(apply_stereo_preset("active", p));
+  EXPECT_EQ(p.window, 25);
   EXPECT_EQ(p.tau_color, 100.0f);
   EXPECT_EQ(p.tau_gradient, 50.0f);
   EXPECT_EQ(p.lr_tolerance, 8.0f);
@@ -109,7 +110,9 @@ TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   EXPECT_EQ(p.window_step_finest, defaults.window_step_finest);
   EXPECT_EQ(p.iterations_fine, defaults.iterations_fine);
   EXPECT_EQ(p.iterations_finest, defaults.iterations_finest);
-  expect_same_non_knob_fields(p, unusual_params());
+  StereoParams unusual_with_active_window = unusual_params();
+  unusual_with_active_window.window = 25;
+  expect_same_non_knob_fields(p, unusual_with_active_window);
   StereoParams checked;
   ASSERT_TRUE(apply_stereo_preset("active", checked));
   EXPECT_NO_THROW(checked.check());
@@ -142,6 +145,7 @@ TEST(StereoPresets, ActiveFastIsTheActiveCostWithTheFastKnobs) {
   ASSERT_TRUE(apply_stereo_preset("active", active));
   StereoParams p = unusual_params();
   ASSERT_TRUE(apply_stereo_preset("active-fast", p));
+  EXPECT_EQ(p.window, active.window);
   EXPECT_EQ(p.tau_color, active.tau_color);
   EXPECT_EQ(p.tau_gradient, active.tau_gradient);
   EXPECT_EQ(p.lr_tolerance, active.lr_tolerance);
