@@ -96,7 +96,8 @@ std::vector<float> weighted_median_all(const std::vector<float>& disparity,
 }
 
 std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity, int width,
-                                             int height, float max_step, int min_size) {
+                                             int height, float max_step, int min_size,
+                                             bool follow_slopes) {
   // Breadth-first search of each segment once; the kernels find the same segments by
   // label propagation (small_segments.cl), and the mask does not depend on the method.
   std::vector<std::uint8_t> large(disparity.size(), 1);
@@ -115,7 +116,15 @@ std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity
       for (const auto& n : neighbours) {
         if (n[0] < 0 || n[0] >= width || n[1] < 0 || n[1] >= height) continue;
         const int q = n[1] * width + n[0];
-        if (seen[q] || !pms_segment_joined(disparity[p], disparity[q], max_step)) continue;
+        if (seen[q]) continue;
+        // The pair is named by its first pixel (left or upper), as the kernel names it.
+        const bool horizontal = n[1] == y;
+        const int first_x = std::min(x, n[0]);
+        const int first_y = std::min(y, n[1]);
+        if (!pms_segment_pair_joined(disparity.data(), width, height, first_x, first_y,
+                                     horizontal, max_step, follow_slopes)) {
+          continue;
+        }
         seen[q] = 1;
         segment.push_back(q);
       }

@@ -40,11 +40,13 @@ std::vector<float> weighted_median_all(const std::vector<float>& disparity,
                                        int threads);
 
 // 1 for every pixel of a segment of at least min_size pixels, 0 in the smaller ones,
-// where a segment joins 4-neighbours whose disparities differ by at most max_step
-// (pms_segment_joined); min_size 0 keeps every pixel. The refill of the small segments
-// takes it as fill_inconsistent's and weighted_median_filled's `consistent`.
+// where a segment joins 4-neighbours whose disparities differ by at most max_step, or
+// with follow_slopes whose step continues a neighbouring step (pms_segment_pair_joined);
+// min_size 0 keeps every pixel. The refill of the small segments takes it as
+// fill_inconsistent's and weighted_median_filled's `consistent`.
 std::vector<std::uint8_t> large_segment_mask(const std::vector<float>& disparity, int width,
-                                             int height, float max_step, int min_size);
+                                             int height, float max_step, int min_size,
+                                             bool follow_slopes = false);
 
 // mask[i] becomes 0 wherever other[i] is 0 (the kernels' mask_and).
 void mask_and(std::vector<std::uint8_t>& mask, const std::vector<std::uint8_t>& other);

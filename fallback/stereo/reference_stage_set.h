@@ -126,8 +126,9 @@ class ReferenceStageSet {
         flexsight::weighted_median_all(disparity, image, weights.data(), radius, threads_);
   }
   void large_segment_mask(const Array<float>& disparity, int width, int height, float max_step,
-                          int min_size, Array<std::uint8_t>& large) {
-    large = flexsight::large_segment_mask(disparity, width, height, max_step, min_size);
+                          bool follow_slopes, int min_size, Array<std::uint8_t>& large) {
+    large = flexsight::large_segment_mask(disparity, width, height, max_step, min_size,
+                                          follow_slopes);
   }
   void flat_planes(const Array<float>& disparity, int /*width*/, int /*height*/,
                    Array<float>& planes) {

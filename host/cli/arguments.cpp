@@ -177,6 +177,8 @@ const std::vector<ParamOption>& param_options() {
                      "refill segments smaller than this (px, 0 = off)"),
       float_option("speckle-range", &StereoParams::speckle_range,
                    "their neighbours' largest disparity step (px)"),
+      flag_option("speckle-slopes", &StereoParams::speckle_slopes,
+                  "segments also join a step that continues the next one (0/1)"),
       integer_option("raw-speckle-size", &StereoParams::raw_speckle_size,
                      "raw segments smaller than this fail the left/right check (px, 0 = off)"),
       float_option("textureless-spread", &StereoParams::textureless_spread,
@@ -302,8 +304,8 @@ std::string stereo_params_help() {
          "                                projector-lit scenes (accurate, with a 25-px\n"
          "                                window, higher cost truncations, an 8-px\n"
          "                                left/right tolerance, no background bound in the\n"
-         "                                hole median, plain windows failing the check and\n"
-         "                                a flat fill), or\n"
+         "                                hole median, plain windows failing the check, a\n"
+         "                                flat fill and speckles that follow slopes), or\n"
          "                                active-fast (active's cost, fast's steps); the\n"
          "                                options below override it\n";
   for (const ParamOption& option : param_options()) {

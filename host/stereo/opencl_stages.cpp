@@ -353,7 +353,7 @@ void OpenClStages::weighted_median_all(const Buffer<float>& disparity, const Dev
 }
 
 void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width, int height,
-                                      float max_step, int min_size,
+                                      float max_step, bool follow_slopes, int min_size,
                                       Buffer<std::uint8_t>& large) {
   const long long pixels = 1LL * width * height;
   require_size(disparity, pixels, "large_segment_mask");
@@ -363,7 +363,8 @@ void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width,
   Buffer<int> changed(context_, 1, "segment merge flag");
   segment_init_.set_args(width, height, labels, counts);
   launch(segment_init_, width, height);
-  segment_merge_.set_args(disparity, width, height, max_step, labels, changed);
+  segment_merge_.set_args(disparity, width, height, max_step, follow_slopes ? 1 : 0, labels,
+                          changed);
   segment_flatten_.set_args(width, height, labels);
   // Every round that reports a change links at least one root under another, so this
   // ends (on PoCL, Motorcycle's mask after the final median takes 2 rounds; a GPU that

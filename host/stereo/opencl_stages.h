@@ -86,7 +86,8 @@ class OpenClStages {
   // large_segment_mask and flat_planes (small_segments.cl). The mask takes a few
   // merge/flatten rounds, each ending in a blocking read of one flag.
   void large_segment_mask(const Buffer<float>& disparity, int width, int height,
-                          float max_step, int min_size, Buffer<std::uint8_t>& large);
+                          float max_step, bool follow_slopes, int min_size,
+                          Buffer<std::uint8_t>& large);
   void flat_planes(const Buffer<float>& disparity, int width, int height, Buffer<float>& planes);
   void mask_and(const Buffer<std::uint8_t>& other, int width, int height,
                 Buffer<std::uint8_t>& mask);

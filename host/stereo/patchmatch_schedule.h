@@ -263,6 +263,7 @@ void PatchMatchSchedule<StageSet>::post_process() {
   if (params_.raw_speckle_size > 0) {
     Bytes large = stages_.template array<std::uint8_t>(pixels, "large raw segments");
     stages_.large_segment_mask(raw[PMS_VIEW_LEFT], width, height, params_.speckle_range,
+                               params_.speckle_slopes,
                                params_.raw_speckle_size, large);
     stages_.mask_and(large, width, height, consistent);
   }
@@ -318,6 +319,7 @@ PatchMatchSchedule<StageSet>::refill_small_segments(const Floats& disparity,
   const size_t pixels = static_cast<size_t>(width) * height;
   Bytes kept = stages_.template array<std::uint8_t>(pixels, "large segments");
   stages_.large_segment_mask(disparity, width, height, params_.speckle_range,
+                             params_.speckle_slopes,
                              params_.speckle_size, kept);
   Floats flat = stages_.template array<float>(4 * pixels, "flat planes");
   stages_.flat_planes(disparity, width, height, flat);

@@ -153,6 +153,13 @@ SpeedKnobs fast_preset() { return {3, 5, 6, 1, 1}; }
 //   the active-bins above parts 34.67 -> 32.83 %, all 24.84 -> 25.10 % (their walls).
 //   Halving the colour bandwidth instead (gamma 5) gained the parts as much and cost the
 //   active-bins' walls 5-13 points.
+// * Segments that follow slopes (speckle_slopes): the bin walls and the parts' sides are
+//   seen at a grazing angle (2 px a row), the 1-px rule cut them into row-sized
+//   speckles, and both speckle steps sent them to the floor's disparity (bin00 with both
+//   steps off: walls 58.5 -> 49.8 %, floor 7.6 -> 9.2 %). Chosen on active-bins bin00-01
+//   and our dev bin000; then the active-bins 25.10 -> 23.26 % all (held-out bin02, bin03
+//   20.57 -> 18.65, 27.92 -> 26.61), parts 32.83 -> 31.33, walls 61.4 -> 54.0; our test
+//   bins parts 17.01 -> 16.00 %, all 5.51 -> 5.73 (the table keeps a few more islands).
 // All four bins: 38.1 -> 24.6 % (held-out bin02, bin03: 32.8 -> 20.2, 41.2 -> 27.4 %).
 // Not for clean images: on the 15 MiddEval3-Q scenes it gives 14.07 % against 10.79 %.
 struct ActiveCost {
@@ -163,6 +170,7 @@ struct ActiveCost {
   float median_background_margin = INFINITY;
   float textureless_spread = 4.0f;
   float fill_max_extrapolation = 0.0f;
+  bool speckle_slopes = true;
 };
 
 }  // namespace
@@ -183,6 +191,7 @@ bool apply_stereo_preset(const std::string& name, StereoParams& params) {
     params.median_background_margin = active.median_background_margin;
     params.textureless_spread = active.textureless_spread;
     params.fill_max_extrapolation = active.fill_max_extrapolation;
+    params.speckle_slopes = active.speckle_slopes;
   } else {
     return false;
   }

@@ -151,6 +151,12 @@ struct StereoParams {
   // structures are refilled too.
   int speckle_size = 100;
   float speckle_range = 1.0f;
+  // Both segment steps also join two neighbours whose disparity step continues the step
+  // beside them to within speckle_range (pms_segment_pair_joined): on a steep surface
+  // (a bin wall at a grazing angle, 2 px a row) the plain rule cuts every row into its
+  // own small segment, and the refill pulls the wall down to the floor. Off by default,
+  // on in the active preset (ActiveCost says why).
+  bool speckle_slopes = false;
   // Before the filling, segments of the finest level's raw left disparities smaller
   // than raw_speckle_size pixels (the same joining rule, speckle_range) count as failing
   // the left/right check (0 = off): a plane that won at one pixel and a few around it
@@ -182,7 +188,8 @@ const char* method_name(StereoMethod method);
 // stereo_params.cpp says why). "active" is for projector-lit scenes (active stereo):
 // the accurate knobs, plus a 25-px window, higher truncations of the colour and gradient
 // terms, a wider left/right tolerance, every consistent pixel voting in the hole median,
-// the texture gate and the flat fill (the only preset that touches those fields;
+// the texture gate, the flat fill and speckles that follow slopes (the only preset that
+// touches those fields;
 // ActiveCost in stereo_params.cpp says why). Returns false for an unknown name.
 bool apply_stereo_preset(const std::string& name, StereoParams& params);
 

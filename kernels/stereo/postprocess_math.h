@@ -163,6 +163,28 @@ FS_INLINE int pms_segment_joined(float d, float d_neighbour, float max_step) {
   return FS_FABS(d - d_neighbour) <= max_step;
 }
 
+/* The pair of 4-neighbours (x, y) and (x + 1, y) (horizontal) or (x, y + 1). With
+ * follow_slopes the two also join when the step between them continues the step on
+ * either side of the pair to within max_step: a steep but smooth surface (a bin wall
+ * seen at a grazing angle changes by about 2 px a row) stays one segment instead of
+ * falling apart into speckles, while an island of a wrong plane, whose border is a jump
+ * unlike the slope on either side, stays cut off. Symmetric in the pair (the steps
+ * change sign together), so a search from either end finds the same segments. */
+FS_INLINE int pms_segment_pair_joined(const FS_GLOBAL float* disparity, int width, int height,
+                                      int x, int y, int horizontal, float max_step,
+                                      int follow_slopes) {
+  const int stride = horizontal ? 1 : width;
+  const int p = y * width + x;
+  const int q = p + stride;
+  const float step = disparity[q] - disparity[p];
+  if (FS_FABS(step) <= max_step) return 1;
+  if (!follow_slopes) return 0;
+  const int has_before = horizontal ? x >= 1 : y >= 1;
+  const int has_after = horizontal ? x + 2 < width : y + 2 < height;
+  if (has_before && FS_FABS(step - (disparity[p] - disparity[p - stride])) <= max_step) return 1;
+  return has_after && FS_FABS(step - (disparity[q + stride] - disparity[q])) <= max_step;
+}
+
 /* The flat plane (0, 0, d): a constant disparity, which pms_fill_pixel copies exactly
  * (0 x + 0 y + d = d), so that refilling a segment takes its neighbour's disparity. */
 FS_INLINE void pms_flat_plane(float d, FS_GLOBAL float* plane) {

@@ -1,4 +1,4 @@
-/* Small segments (postprocess_math.h: pms_segment_joined), found by label propagation
+/* Small segments (postprocess_math.h: pms_segment_pair_joined), found by label propagation
  * with union-find roots (reference: large_segment_mask, a breadth-first search; both
  * give the same mask because a segment's pixels are the same whatever finds them).
  *
@@ -27,7 +27,7 @@ __kernel void segment_init(int width, int height, __global int* labels, __global
 /* Joins each pixel with its right and lower neighbour (that covers every 4-neighbour
  * pair once). */
 __kernel void segment_merge(const __global float* disparity, int width, int height,
-                            float max_step, volatile __global int* labels,
+                            float max_step, int follow_slopes, volatile __global int* labels,
                             __global int* changed) {
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
@@ -35,7 +35,10 @@ __kernel void segment_merge(const __global float* disparity, int width, int heig
   const int neighbours[2] = {x + 1 < width ? p + 1 : -1, y + 1 < height ? p + width : -1};
   for (int k = 0; k < 2; ++k) {
     const int q = neighbours[k];
-    if (q < 0 || !pms_segment_joined(disparity[p], disparity[q], max_step)) continue;
+    if (q < 0 || !pms_segment_pair_joined(disparity, width, height, x, y, k == 0, max_step,
+                                          follow_slopes)) {
+      continue;
+    }
     const int root_p = pms_segment_root(labels, p);
     const int root_q = pms_segment_root(labels, q);
     if (root_p == root_q) continue;

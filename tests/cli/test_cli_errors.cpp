@@ -68,6 +68,7 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --confident-spatial-candidates 17", "--confident-spatial-candidates");
   expect_rejected(pair + " --confident-spatial-candidates -1", "--confident-spatial-candidates");
   expect_rejected(pair + " --refresh-confidence 2", "--refresh-confidence");
+  expect_rejected(pair + " --speckle-slopes yes", "--speckle-slopes");
   expect_rejected(pair + " --speckle-size -1", "--speckle-size");
   expect_rejected(pair + " --raw-speckle-size -3", "--raw-speckle-size");
   expect_rejected(pair + " --refill-iterations 11", "--refill-iterations");

@@ -260,6 +260,49 @@ TEST(LargeSegmentMask, JoinsFourNeighboursWithinTheStepOnly) {
   EXPECT_EQ(large_segment_mask(ramp, 8, 1, 0.25f, 2), std::vector<std::uint8_t>(8, 0));
 }
 
+TEST(LargeSegmentMask, FollowingSlopesKeepsASteepWallWhole) {
+  // A wall rising 2 px a row: every row is its own segment under a 1-px step, and the
+  // whole wall one segment when a step may continue the step beside it.
+  const int w = 6, h = 8;
+  std::vector<float> wall(w * h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) wall[y * w + x] = 10.0f + 2.0f * static_cast<float>(y);
+  }
+  EXPECT_EQ(large_segment_mask(wall, w, h, 1.0f, w + 1, false),
+            std::vector<std::uint8_t>(wall.size(), 0));
+  EXPECT_EQ(large_segment_mask(wall, w, h, 1.0f, w * h, true),
+            std::vector<std::uint8_t>(wall.size(), 1));
+  // A bend (2 px a row, then 4) is followed too: each step continues one beside it.
+  std::vector<float> bend(h);
+  for (int y = 0; y < h; ++y) bend[y] = y < 4 ? 2.0f * y : 6.0f + 4.0f * (y - 3);
+  EXPECT_EQ(large_segment_mask(bend, 1, h, 1.0f, h, true), std::vector<std::uint8_t>(h, 1));
+}
+
+TEST(LargeSegmentMask, FollowingSlopesStillCutsOffAnIsland) {
+  // A 2x2 island 5 px above a flat field and a 2x2 island 5 px above a wall rising 2 px a
+  // row: its border is a jump unlike the slope on either side, so it stays apart.
+  const int w = 8, h = 8;
+  std::vector<float> flat(w * h, 3.0f), wall(w * h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) wall[y * w + x] = 2.0f * static_cast<float>(y);
+  }
+  for (int y = 3; y < 5; ++y) {
+    for (int x = 3; x < 5; ++x) {
+      flat[y * w + x] += 5.0f;
+      wall[y * w + x] += 5.0f;
+    }
+  }
+  for (const auto* d : {&flat, &wall}) {
+    const auto kept = large_segment_mask(*d, w, h, 1.0f, 5, true);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const bool in_island = x >= 3 && x < 5 && y >= 3 && y < 5;
+        EXPECT_EQ(kept[y * w + x], in_island ? 0 : 1) << "pixel " << x << ", " << y;
+      }
+    }
+  }
+}
+
 TEST(LargeSegmentMask, RefillGivesAnIslandTheDisparityAroundIt) {
   // The refill of the pipeline: flat planes, background filling from the kept pixels,
   // then the hole median voting the kept ones. A 2x2 island of 15 in a field of 3.

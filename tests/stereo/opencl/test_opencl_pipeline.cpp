@@ -97,6 +97,12 @@ std::vector<PipelineCase> pipeline_cases() {
   add("pms_w11_refill_every_pixel", pms([](StereoParams& p) { p.refill_unsure_only = false; }));
   // The textured-pixel mask (uploaded from the host) gating the check before the fill.
   add("ppms_w11_textureless_gate", ppms([](StereoParams& p) { p.textureless_spread = 12.0f; }));
+  // Both segment steps joining steps that continue a slope (large raw segments too, so
+  // that the raw step changes the check).
+  add("ppms_w11_speckles_follow_slopes", ppms([](StereoParams& p) {
+        p.speckle_slopes = true;
+        p.raw_speckle_size = 60;
+      }));
   return cases;
 }
 

@@ -88,10 +88,13 @@ TEST_P(PostProcessStage, WeightedMedianAll) {
 
 // Disparity maps with segments of many sizes. 0: diagonal bands 1.5 px apart with
 // random islands 5 px above them; 1: one constant segment; 2: a serpentine path of 0
-// through a field of 5, one segment that takes many merge rounds to join.
+// through a field of 5, one segment that takes many merge rounds to join; 3: a steep
+// wall (2 px a row, 0.8 a column) with noise of up to 0.7 px and the islands of 0, for
+// the segments that follow slopes.
 std::vector<float> segment_map(int width, int height, std::uint32_t seed, int kind) {
   std::mt19937 rng(seed);
   std::bernoulli_distribution island(0.1);
+  std::uniform_real_distribution<float> noise(-0.7f, 0.7f);
   std::vector<float> d(static_cast<size_t>(width) * height, 7.0f);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
@@ -102,6 +105,9 @@ std::vector<float> segment_map(int width, int height, std::uint32_t seed, int ki
         const bool open_row = y % 2 == 0;
         const bool link = (y % 4 == 1 && x == width - 1) || (y % 4 == 3 && x == 0);
         v = open_row || link ? 0.0f : 5.0f;
+      } else if (kind == 3) {
+        v = 2.0f * static_cast<float>(y) + 0.8f * static_cast<float>(x) + noise(rng) +
+            (island(rng) ? 5.0f : 0.0f);
       }
     }
   }
@@ -110,17 +116,21 @@ std::vector<float> segment_map(int width, int height, std::uint32_t seed, int ki
 
 TEST_P(PostProcessStage, LargeSegmentMask) {
   const LevelCase c = GetParam();
-  for (int kind : {0, 1, 2}) {
+  for (int kind : {0, 1, 2, 3}) {
     const std::vector<float> d = segment_map(c.width, c.height, c.seed, kind);
     const Buffer<float> disparity = guarded(d, "disparity");
-    for (float max_step : {0.0f, 1.0f, 2.0f}) {
-      for (int min_size : {0, 1, 2, 5, 40, c.width * c.height}) {
-        const std::vector<std::uint8_t> expected =
-            large_segment_mask(d, c.width, c.height, max_step, min_size);
-        Buffer<std::uint8_t> large = guarded_output<std::uint8_t>(expected.size(), "large");
-        stages().large_segment_mask(disparity, c.width, c.height, max_step, min_size, large);
-        EXPECT_TRUE(same_buffer(expected, large))
-            << "map " << kind << ", step " << max_step << ", size " << min_size;
+    for (bool follow_slopes : {false, true}) {
+      for (float max_step : {0.0f, 1.0f, 2.0f}) {
+        for (int min_size : {0, 1, 2, 5, 40, c.width * c.height}) {
+          const std::vector<std::uint8_t> expected =
+              large_segment_mask(d, c.width, c.height, max_step, min_size, follow_slopes);
+          Buffer<std::uint8_t> large = guarded_output<std::uint8_t>(expected.size(), "large");
+          stages().large_segment_mask(disparity, c.width, c.height, max_step, follow_slopes,
+                                      min_size, large);
+          EXPECT_TRUE(same_buffer(expected, large))
+              << "map " << kind << ", step " << max_step << ", size " << min_size
+              << ", slopes " << follow_slopes;
+        }
       }
     }
   }
