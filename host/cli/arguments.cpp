@@ -303,8 +303,8 @@ std::string stereo_params_help() {
          "                                (window steps and iterations), or active for\n"
          "                                projector-lit scenes (accurate, with a 25-px\n"
          "                                window, higher cost truncations, an 8-px\n"
-         "                                left/right tolerance, no background bound in the\n"
-         "                                hole median, plain windows failing the check, a\n"
+         "                                left/right tolerance, a 5x5 hole median without\n"
+         "                                background bound, plain windows failing the check, a\n"
          "                                flat fill and speckles that follow slopes), or\n"
          "                                active-fast (active's cost, fast's steps); the\n"
          "                                options below override it\n";

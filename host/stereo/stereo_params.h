@@ -187,7 +187,7 @@ const char* method_name(StereoMethod method);
 // per finer level, about 3x faster for about 0.65 points of bad-2 (fast_preset() in
 // stereo_params.cpp says why). "active" is for projector-lit scenes (active stereo):
 // the accurate knobs, plus a 25-px window, higher truncations of the colour and gradient
-// terms, a wider left/right tolerance, every consistent pixel voting in the hole median,
+// terms, a wider left/right tolerance, every consistent pixel voting in a 5x5 hole median,
 // the texture gate, the flat fill and speckles that follow slopes (the only preset that
 // touches those fields;
 // ActiveCost in stereo_params.cpp says why). Returns false for an unknown name.

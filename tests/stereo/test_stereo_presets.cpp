@@ -92,7 +92,7 @@ TEST(StereoPresets, AccurateIsTheDefaults) {
 // The projector-lit bins' preset (docs/stereo.md, "Projector-lit bins"): the accurate
 // speed knobs, a 25-px window, the colour and gradient truncations raised above the
 // rendered images' true-match residual, an 8-px left/right tolerance, every consistent
-// pixel voting in the hole median, the texture gate, the flat fill and speckles that
+// pixel voting in a 5x5 hole median, the texture gate, the flat fill and speckles that
 // follow slopes; nothing else moves.
 TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   const StereoParams defaults;
@@ -108,6 +108,7 @@ TEST(StereoPresets, ActiveRaisesTheTruncationsAndTheLeftRightTolerance) {
   EXPECT_EQ(p.fill_max_extrapolation, 0.0f);
   EXPECT_TRUE(p.speckle_slopes);
   EXPECT_FALSE(defaults.speckle_slopes);
+  EXPECT_EQ(p.median_window, 5);
   EXPECT_EQ(p.window_step, defaults.window_step);
   EXPECT_EQ(p.window_step_fine, defaults.window_step_fine);
   EXPECT_EQ(p.window_step_finest, defaults.window_step_finest);
@@ -156,6 +157,7 @@ TEST(StereoPresets, ActiveFastIsTheActiveCostWithTheFastKnobs) {
   EXPECT_EQ(p.textureless_spread, active.textureless_spread);
   EXPECT_EQ(p.fill_max_extrapolation, active.fill_max_extrapolation);
   EXPECT_EQ(p.speckle_slopes, active.speckle_slopes);
+  EXPECT_EQ(p.median_window, active.median_window);
   EXPECT_EQ(p.window_step, fast.window_step);
   EXPECT_EQ(p.window_step_fine, fast.window_step_fine);
   EXPECT_EQ(p.window_step_finest, fast.window_step_finest);
