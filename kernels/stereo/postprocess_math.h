@@ -158,12 +158,8 @@ FS_INLINE float pms_weighted_median(const float* values, const float* weights,
 /* Small segments (speckles): two 4-neighbours belong to one segment when their
  * disparities differ by at most max_step. A segment of fewer than min_size pixels is
  * an island PatchMatch left (one wrong plane that spread a little), too large for the
- * 7x7 final median; it is refilled like a pixel that failed the left/right check. */
-FS_INLINE int pms_segment_joined(float d, float d_neighbour, float max_step) {
-  return FS_FABS(d - d_neighbour) <= max_step;
-}
-
-/* The pair of 4-neighbours (x, y) and (x + 1, y) (horizontal) or (x, y + 1). With
+ * 7x7 final median; it is refilled like a pixel that failed the left/right check.
+ * The pair of 4-neighbours (x, y) and (x + 1, y) (horizontal) or (x, y + 1). With
  * follow_slopes the two also join when the step between them continues the step on
  * either side of the pair to within max_step: a steep but smooth surface (a bin wall
  * seen at a grazing angle changes by about 2 px a row) stays one segment instead of
