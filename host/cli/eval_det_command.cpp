@@ -16,9 +16,9 @@
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/progress_bar.h"
+#include "host/dataset/dataset_files.h"
 #include "host/detect/detector_model.h"
 #include "host/detect/ssd_detector.h"
-#include "host/dataset/dataset_files.h"
 #include "host/eval/detection_ground_truth.h"
 #include "host/eval/detection_metrics.h"
 #include "host/eval/detection_pictures.h"
@@ -26,6 +26,7 @@
 #include "host/eval/detection_results_reader.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/report_text.h"
 #include "host/io/staged_folder.h"
 
 namespace flexsight {
@@ -230,12 +231,6 @@ std::vector<MontageImage> montage_images(const DetectionGroundTruth& truth,
     images.push_back(std::move(image));
   }
   return images;
-}
-
-std::string fraction_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", value);
-  return std::isfinite(value) ? text : "-";
 }
 
 }  // namespace

@@ -16,8 +16,10 @@
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/bop_reader.h"
 #include "host/dataset/dataset_files.h"
+#include "host/dataset/detection_data.h"
 #include "host/eval/pose_report.h"
 #include "host/io/input_error.h"
+#include "host/io/report_text.h"
 #include "host/io/staged_folder.h"
 
 namespace flexsight {
@@ -38,8 +40,6 @@ struct EvalPoseOptions {
   bool overwrite = false;
   bool quiet = false;
 };
-
-std::string default_cad_dir() { return detection_data_dir() + "/cad/tless"; }
 
 // DIR_OF_CAD/models_info.json when there is one, else the repository's table for the
 // T-LESS parts (models/tless-cad/models_info.json).
@@ -100,12 +100,6 @@ EvalPoseOptions parse_options(std::vector<std::string> args) {
 
 // The parts the evaluation needs: the CAD mesh and models_info entry of every obj_id
 // that the data set's ground truth or the results name, checked against each other.
-std::string fraction_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", value);
-  return std::isfinite(value) ? text : "-";
-}
-
 }  // namespace
 
 int run_eval_pose_command(std::vector<std::string> args) {

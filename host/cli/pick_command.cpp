@@ -19,6 +19,7 @@
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/middeval3_files.h"
 #include "host/stereo/pipeline_rules.h"
 
 namespace flexsight {
@@ -57,11 +58,12 @@ PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const
     inputs.right = positional[1];
   } else if (positional.size() == 1 && fs::is_directory(positional[0])) {
     const fs::path scene = positional[0];
-    inputs.left = (scene / "im0.png").string();
-    inputs.right = (scene / "im1.png").string();
-    if (inputs.calib.empty()) inputs.calib = (scene / "calib.txt").string();
-    if (inputs.passive_left.empty() && fs::is_regular_file(scene / "im0_passive.png")) {
-      inputs.passive_left = (scene / "im0_passive.png").string();
+    const MiddEval3Files files = middeval3_files(scene);
+    inputs.left = files.left;
+    inputs.right = files.right;
+    if (inputs.calib.empty()) inputs.calib = files.calib;
+    if (inputs.passive_left.empty() && fs::is_regular_file(files.left_passive)) {
+      inputs.passive_left = files.left_passive;
     }
   } else {
     throw InputError("pick", positional.size() == 1 ? positional[0] + " is not a scene folder (and no right image was given)"

@@ -18,12 +18,13 @@
 #include "host/eval/colorize.h"
 #include "host/eval/confidence_depth_metrics.h"
 #include "host/eval/metrics.h"
-#include "host/stereo/confidence_map.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/middeval3_files.h"
 #include "host/io/middlebury_v2.h"
 #include "host/io/pfm.h"
+#include "host/stereo/confidence_map.h"
 #include "host/stereo/pipeline_rules.h"
 #include "host/stereo/stereo_pipeline.h"
 
@@ -81,15 +82,16 @@ StereoJob resolve_inputs(const std::vector<std::string>& positional, StereoParam
   if (!fs::is_directory(scene)) {
     throw InputError(scene.string(), "is not a scene folder (and no right image was given)");
   }
-  job.left = (scene / "im0.png").string();
-  job.right = (scene / "im1.png").string();
-  if (fs::exists(scene / "calib.txt")) job.calib = (scene / "calib.txt").string();
+  const MiddEval3Files files = middeval3_files(scene);
+  job.left = files.left;
+  job.right = files.right;
+  if (fs::exists(files.calib)) job.calib = files.calib;
   if (!ndisp_given) {
-    params.ndisp = read_middlebury_calib((scene / "calib.txt").string()).ndisp;
+    params.ndisp = read_middlebury_calib(files.calib).ndisp;
     job.ndisp_from_calib = true;
   }
-  if (fs::exists(scene / "disp0GT.pfm")) job.gt = (scene / "disp0GT.pfm").string();
-  if (fs::exists(scene / "mask0nocc.png")) job.gt_mask = (scene / "mask0nocc.png").string();
+  if (fs::exists(files.left_truth)) job.gt = files.left_truth;
+  if (fs::exists(files.nonocc_mask)) job.gt_mask = files.nonocc_mask;
   return job;
 }
 

@@ -11,6 +11,7 @@
 #include "host/cli/progress_bar.h"
 #include "host/cli/synth_commands.h"
 #include "host/cli/synth_settings_options.h"
+#include "host/dataset/detection_data.h"
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
@@ -22,8 +23,6 @@ namespace flexsight {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string default_cad_dir() { return detection_data_dir() + "/cad/tless"; }
 
 std::vector<SettingOption> bin_setting_options(BinSimSettings& s) {
   return {

@@ -9,6 +9,7 @@
 #include "host/cli/synth_run.h"
 #include "host/cli/synth_settings_options.h"
 #include "host/dataset/coco_writer.h"
+#include "host/dataset/detection_data.h"
 #include "host/io/input_error.h"
 #include "host/synth/background_library.h"
 #include "host/synth/patch_library.h"
@@ -16,8 +17,6 @@
 
 namespace flexsight {
 namespace {
-
-std::string default_backgrounds_dir() { return detection_data_dir() + "/backgrounds"; }
 
 void print_help() {
   SemiSyntheticSettings defaults;

@@ -1,7 +1,6 @@
 #include "host/cli/synth_settings_options.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
@@ -145,13 +144,6 @@ nlohmann::json settings_json(const std::vector<SettingOption>& options, int widt
     }
   }
   return json;
-}
-
-std::string detection_data_dir() {
-  if (const char* folder = std::getenv("FLEXSIGHT_DETECTION_DATA"); folder && *folder) {
-    return folder;
-  }
-  return FLEXSIGHT_DEFAULT_DETECTION_DATA;
 }
 
 }  // namespace flexsight

@@ -37,9 +37,4 @@ std::string settings_options_help(const std::vector<SettingOption>& options);
 // Every option's value, and the size, as a JSON object.
 nlohmann::json settings_json(const std::vector<SettingOption>& options, int width, int height);
 
-// The detection data folder (T-LESS models, backgrounds, detector weights): the
-// environment variable FLEXSIGHT_DETECTION_DATA, else the build's default
-// (../shared/detection beside the repository).
-std::string detection_data_dir();
-
 }  // namespace flexsight

@@ -51,7 +51,10 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 Json read_json(const std::string& path) {
-  const std::string text = io_detail::read_whole_file(path);
+  return parse_json(io_detail::read_whole_file(path), path);
+}
+
+Json parse_json(const std::string& text, const std::string& path) {
   try {
     return Json::parse(text);
   } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number too large (1e999)

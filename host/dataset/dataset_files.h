@@ -24,6 +24,9 @@ void write_text(const std::string& path, const std::string& text);
 // not valid JSON (with the parser's position).
 Json read_json(const std::string& path);
 
+// Parses `text`, read from `path`; InputError naming `path` when it is not valid JSON.
+Json parse_json(const std::string& text, const std::string& path);
+
 // Creates `dir` (and its parents) unless it exists; throws InputError naming it when it
 // cannot be created, or when it exists and holds anything: a dataset is written into a
 // folder of its own, so files of an earlier run cannot mix with this one's.

@@ -5,18 +5,10 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "host/io/id_colour.h"
+
 namespace flexsight {
 namespace {
-
-// A bright colour per category id, the same in every image.
-cv::Scalar category_colour(int category_id) {
-  static const cv::Scalar kPalette[] = {{230, 25, 75},   {60, 180, 75},  {255, 225, 25},
-                                        {0, 130, 200},   {245, 130, 48}, {145, 30, 180},
-                                        {70, 240, 240},  {240, 50, 230}, {210, 245, 60},
-                                        {250, 190, 212}, {0, 128, 128},  {220, 190, 255}};
-  const int count = sizeof kPalette / sizeof kPalette[0];
-  return kPalette[((category_id % count) + count) % count];
-}
 
 // `text` on a filled box of `colour` with its lower-left corner at `corner`, kept inside
 // the image.
@@ -47,7 +39,7 @@ cv::Mat draw_detections(const cv::Mat& rgb, const std::vector<ObjectDetection>& 
   for (auto it = found.rbegin(); it != found.rend(); ++it) {
     const cv::Point top_left(cvRound(it->box[0] * scale), cvRound(it->box[1] * scale));
     const cv::Point bottom_right(cvRound(it->box[2] * scale), cvRound(it->box[3] * scale));
-    const cv::Scalar colour = category_colour(it->category_id);
+    const cv::Scalar colour = id_colour(it->category_id);
     cv::rectangle(picture, top_left, bottom_right, colour, 1, cv::LINE_AA);
     char label[48];
     std::snprintf(label, sizeof label, "%d %.2f", it->category_id, it->score);

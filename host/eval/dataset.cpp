@@ -10,6 +10,7 @@
 #include "host/io/calibration.h"
 #include "host/io/input_error.h"
 #include "host/io/kitti_disparity.h"
+#include "host/io/middeval3_files.h"
 #include "host/io/middlebury_v2.h"
 #include "host/io/pfm.h"
 
@@ -72,16 +73,18 @@ Scene folder_scene(const fs::path& folder, DatasetLayout layout, const char* lef
 // ---- MiddEval3 -------------------------------------------------------------------
 
 bool is_middeval3_scene(const fs::path& folder) {
-  return is_file(folder / "im0.png") && is_file(folder / "im1.png") &&
-         is_file(folder / "calib.txt");
+  const MiddEval3Files files = middeval3_files(folder);
+  return is_file(files.left) && is_file(files.right) && is_file(files.calib);
 }
 
 Scene middeval3_scene(const fs::path& folder) {
-  Scene scene = folder_scene(folder, DatasetLayout::MiddEval3, "im0.png", "im1.png");
-  scene.calib_path = (folder / "calib.txt").string();
+  const MiddEval3Files files = middeval3_files(folder);
+  Scene scene = folder_scene(folder, DatasetLayout::MiddEval3, middeval3::kLeftImage,
+                             middeval3::kRightImage);
+  scene.calib_path = files.calib;
   // The test split ships without ground truth; such scenes can still be matched.
-  scene.gt_path = if_exists(folder / "disp0GT.pfm");
-  scene.nonocc_path = if_exists(folder / "mask0nocc.png");
+  scene.gt_path = if_exists(files.left_truth);
+  scene.nonocc_path = if_exists(files.nonocc_mask);
   scene.ndisp = read_middlebury_calib(scene.calib_path).ndisp;
   return scene;
 }

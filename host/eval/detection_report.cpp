@@ -1,8 +1,9 @@
 #include "host/eval/detection_report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
+
+#include "host/io/report_text.h"
 
 namespace flexsight {
 
@@ -15,30 +16,6 @@ const char* const kDetectionConventions =
     "image and class, area range all). Means over the classes with ground truth.";
 
 namespace {
-
-constexpr int kMarkdownDecimals = 4;
-
-std::string fixed(double value) {
-  if (!std::isfinite(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", kMarkdownDecimals, value);
-  return text;
-}
-
-std::string threshold_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-std::string markdown_cell(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    if (c == '|') escaped += '\\';
-    escaped += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return escaped;
-}
 
 // A fraction, or null where it is undefined (JSON has no NaN).
 nlohmann::ordered_json fraction(double value) {
@@ -66,27 +43,27 @@ std::string to_markdown(const DetectionReport& report) {
   text += std::string("- Conventions: ") + kDetectionConventions + "\n\n";
 
   text += "## Summary\n\n| metric | value |\n|---|---:|\n";
-  text += "| mAP@0.5 (VOC all-point) | " + fixed(s.map50) + " |\n";
-  text += "| mAP@[.5:.95] (COCO) | " + fixed(s.map50_95) + " |\n";
-  text += "| AP50 (COCO) | " + fixed(s.ap50_coco) + " |\n";
-  text += "| AP75 (COCO) | " + fixed(s.ap75) + " |\n";
+  text += "| mAP@0.5 (VOC all-point) | " + fraction_text(s.map50) + " |\n";
+  text += "| mAP@[.5:.95] (COCO) | " + fraction_text(s.map50_95) + " |\n";
+  text += "| AP50 (COCO) | " + fraction_text(s.ap50_coco) + " |\n";
+  text += "| AP75 (COCO) | " + fraction_text(s.ap75) + " |\n";
   if (other_threshold) {
-    text += "| mAP@" + threshold_text(s.iou_threshold) + " (VOC all-point) | " + fixed(s.map) + " |\n";
+    text += "| mAP@" + threshold_label(s.iou_threshold) + " (VOC all-point) | " + fraction_text(s.map) + " |\n";
   }
 
   text += "\n## Per class\n\n| id | name | ground truth | detections | VOC AP@0.5 |";
   std::string rule = "|---:|---|---:|---:|---:|";
   if (other_threshold) {
-    text += " VOC AP@" + threshold_text(s.iou_threshold) + " |";
+    text += " VOC AP@" + threshold_label(s.iou_threshold) + " |";
     rule += "---:|";
   }
   text += " COCO AP | COCO AP50 | COCO AP75 |\n" + rule + "---:|---:|---:|\n";
   for (const ClassDetectionScores& c : s.classes) {
     text += "| " + std::to_string(c.category_id) + " | " + markdown_cell(c.name) + " | " +
             std::to_string(c.ground_truth) + " | " + std::to_string(c.detections) + " | " +
-            fixed(c.voc_ap50) + " |";
-    if (other_threshold) text += " " + fixed(c.voc_ap) + " |";
-    text += " " + fixed(c.coco_ap) + " | " + fixed(c.coco_ap50) + " | " + fixed(c.coco_ap75) + " |\n";
+            fraction_text(c.voc_ap50) + " |";
+    if (other_threshold) text += " " + fraction_text(c.voc_ap) + " |";
+    text += " " + fraction_text(c.coco_ap) + " | " + fraction_text(c.coco_ap50) + " | " + fraction_text(c.coco_ap75) + " |\n";
   }
   text += "\nA class without ground truth shows `-`: it enters no mean.\n";
   return text;

@@ -54,15 +54,7 @@ std::string quote_non_finite_words(const std::string& text) {
 }
 
 Json parse_results(const std::string& path) {
-  const std::string text = quote_non_finite_words(io_detail::read_whole_file(path));
-  try {
-    return Json::parse(text);
-  } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number too large (1e999)
-    std::string message = e.what();
-    const auto bracket = message.find("] ");
-    if (bracket != std::string::npos) message = message.substr(bracket + 2);
-    throw InputError(path, "is not valid JSON (" + message + ")");
-  }
+  return dataset_files::parse_json(quote_non_finite_words(io_detail::read_whole_file(path)), path);
 }
 
 class EntryReader {

@@ -1,8 +1,9 @@
 #include "host/eval/pose_report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
+
+#include "host/io/report_text.h"
 
 namespace flexsight {
 
@@ -21,13 +22,6 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Json fraction(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
-std::string fixed(double value) {
-  if (!std::isfinite(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", value);
-  return text;
-}
 
 std::string ar_definition(const PoseScores& s) {
   return s.has_vsd ? "mean of ar_vsd, ar_mssd, ar_mspd"
@@ -129,19 +123,19 @@ std::string to_markdown(const PoseReport& report) {
     text += "; " + std::to_string(report.images_skipped_mirrored) + " mirrored images left out";
   }
   text += ", " + std::to_string(s.ground_truth) + " ground-truth instances, " + std::to_string(s.targets) +
-          " targets at visib_fract >= " + fixed(report.settings.min_visib_fract) + ")\n";
+          " targets at visib_fract >= " + fraction_text(report.settings.min_visib_fract) + ")\n";
   text += "- Results: `" + report.results + "` (" + std::to_string(report.results_lines) + " estimates, " +
           std::to_string(s.estimates_matched_against_targets) + " evaluated)\n";
   text += "- Models: `" + report.cad + "`, symmetries from `" + report.models_info + "`\n";
   text += std::string("- Conventions: ") + kPoseConventions + "\n\n";
 
   text += "## Summary\n\n| metric | value |\n|---|---:|\n";
-  text += "| ADD(-S) recall at 0.1 d | " + fixed(s.add_recall()) + " |\n";
-  text += "| ADD(-S) recall, targets >= 50 % visible | " + fixed(s.add_recall_visib50()) + " |\n";
-  text += "| AR (" + ar_definition(s) + ") | " + fixed(s.ar()) + " |\n";
-  text += "| AR_VSD | " + (s.has_vsd ? fixed(s.ar_vsd()) : std::string("- (no depth)")) + " |\n";
-  text += "| AR_MSSD | " + fixed(s.ar_mssd()) + " |\n";
-  text += "| AR_MSPD | " + fixed(s.ar_mspd()) + " |\n";
+  text += "| ADD(-S) recall at 0.1 d | " + fraction_text(s.add_recall()) + " |\n";
+  text += "| ADD(-S) recall, targets >= 50 % visible | " + fraction_text(s.add_recall_visib50()) + " |\n";
+  text += "| AR (" + ar_definition(s) + ") | " + fraction_text(s.ar()) + " |\n";
+  text += "| AR_VSD | " + (s.has_vsd ? fraction_text(s.ar_vsd()) : std::string("- (no depth)")) + " |\n";
+  text += "| AR_MSSD | " + fraction_text(s.ar_mssd()) + " |\n";
+  text += "| AR_MSPD | " + fraction_text(s.ar_mspd()) + " |\n";
 
   text += "\n## Per object\n\n| obj_id | ADD metric | targets | estimates | ADD(-S) recall | "
           "ADD(-S) >= 50 % visible | AR | AR_VSD | AR_MSSD | AR_MSPD |\n"
@@ -150,9 +144,9 @@ std::string to_markdown(const PoseReport& report) {
     const auto symmetric = report.symmetric.find(obj_id);
     const bool adds = symmetric != report.symmetric.end() && symmetric->second;
     text += "| " + std::to_string(obj_id) + " | " + (adds ? "ADD-S" : "ADD") + " | " + std::to_string(o.targets) +
-            " | " + std::to_string(o.estimates) + " | " + fixed(o.add_recall()) + " | " +
-            fixed(o.add_recall_visib50()) + " | " + fixed(o.ar()) + " | " + fixed(o.ar_vsd()) + " | " +
-            fixed(o.ar_mssd()) + " | " + fixed(o.ar_mspd()) + " |\n";
+            " | " + std::to_string(o.estimates) + " | " + fraction_text(o.add_recall()) + " | " +
+            fraction_text(o.add_recall_visib50()) + " | " + fraction_text(o.ar()) + " | " + fraction_text(o.ar_vsd()) + " | " +
+            fraction_text(o.ar_mssd()) + " | " + fraction_text(o.ar_mspd()) + " |\n";
   }
   text += "\nAn object without targets shows `-`: it enters no recall.\n";
   return text;

@@ -4,39 +4,16 @@
 #include <cstdio>
 #include <sstream>
 
+#include "host/io/report_text.h"
+
 namespace flexsight {
 
 namespace {
 
-// Fixed precision everywhere so reports diff cleanly between runs.
 constexpr int kPercentDecimals = 2;  // Markdown
 constexpr int kErrorDecimals = 3;    // Markdown
 constexpr int kSecondsDecimals = 2;  // Markdown
 constexpr int kJsonDecimals = 6;     // JSON keeps more for scripts that compare runs
-
-std::string fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  return buffer;
-}
-
-// Threshold as a label: 0.5 -> "0.5", 2 -> "2".
-std::string threshold_label(double threshold) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", threshold);
-  return buffer;
-}
-
-// ---- Markdown --------------------------------------------------------------------
-
-std::string markdown_cell(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    if (c == '|') escaped += '\\';
-    escaped += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return escaped;
-}
 
 std::string markdown_header() {
   std::string header = "| scene | size | ndisp |";
@@ -52,11 +29,11 @@ std::string markdown_header() {
 
 std::string markdown_stats(const ErrorStats& stats, double seconds) {
   std::string cells;
-  for (double percent : stats.bad_percent) cells += " " + fixed(percent, kPercentDecimals) + " |";
-  cells += " " + (std::isfinite(stats.avg_error) ? fixed(stats.avg_error, kErrorDecimals) : std::string("n/a")) + " |";
-  cells += " " + fixed(stats.density_percent, kPercentDecimals) + " |";
+  for (double percent : stats.bad_percent) cells += " " + fixed_decimals(percent, kPercentDecimals) + " |";
+  cells += " " + (std::isfinite(stats.avg_error) ? fixed_decimals(stats.avg_error, kErrorDecimals) : std::string("n/a")) + " |";
+  cells += " " + fixed_decimals(stats.density_percent, kPercentDecimals) + " |";
   // Results read from files have no matcher time.
-  cells += " " + (seconds > 0 ? fixed(seconds, kSecondsDecimals) : std::string("-")) + " |";
+  cells += " " + (seconds > 0 ? fixed_decimals(seconds, kSecondsDecimals) : std::string("-")) + " |";
   return cells;
 }
 
@@ -87,7 +64,7 @@ double mean_available(const std::vector<SceneReport>& scenes, Value value) {
 }
 
 std::string cell(double value, int decimals) {
-  return std::isfinite(value) ? fixed(value, decimals) : std::string("-");
+  return std::isfinite(value) ? fixed_decimals(value, decimals) : std::string("-");
 }
 
 // Confidence thresholds and depth error, when any scene has them.
@@ -160,6 +137,13 @@ std::string markdown_confidence_and_depth(const EvalReport& report) {
 }
 
 // ---- JSON ------------------------------------------------------------------------
+//
+// Written here rather than through nlohmann::json (which the other reports use) because
+// report.json's bytes are a fixed format that scripts compare between runs: every score has
+// six decimals ("12.500000"), thresholds are short labels (0.5, 2), and the confidence and
+// depth blocks sit on one line each. nlohmann writes the shortest round-trip number
+// ("12.5") and one element per line, so it would change every file. The number rule lives in
+// json_number alone.
 
 std::string json_string(const std::string& text) {
   std::string out = "\"";
@@ -186,7 +170,7 @@ std::string json_string(const std::string& text) {
 // JSON has no NaN or infinity; such a value can only come from a bug, and null keeps
 // the document parseable while making the problem visible.
 std::string json_number(double value, int decimals = kJsonDecimals) {
-  return std::isfinite(value) ? fixed(value, decimals) : "null";
+  return std::isfinite(value) ? fixed_decimals(value, decimals) : "null";
 }
 
 std::string json_stats(const ErrorStats& stats, const std::string& indent) {

@@ -72,7 +72,8 @@ ProjectedTemplate turn_view(const ProjectedView& view, double angle, const Pinho
 
 // The tensor as bytes (distance x 8, saturated), layer after layer: the search reads it
 // at random places millions of times, and a quarter of the float tensor's size stays
-// in the cache (measured: the float tensor's lookups were 40 % of the search's time).
+// in the cache (the float tensor's lookups were a large share of the search's time;
+// docs/tuning-log.md).
 class CompactTensor {
  public:
   explicit CompactTensor(const DcdTensor& tensor)

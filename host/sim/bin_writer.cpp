@@ -8,24 +8,26 @@
 #include "host/io/atomic_file.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/middeval3_files.h"
 #include "host/io/pfm.h"
 
 namespace flexsight {
 
 void write_bin_folder(const std::string& folder, const StereoRig& rig, const BinViews& views) {
   namespace fs = std::filesystem;
-  write_atomically(folder + "/calib.txt", [&](const std::string& tmp) {
+  auto file = [&](const char* name) { return folder + "/" + name; };
+  write_atomically(file(middeval3::kCalib), [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     out << rig.calib_text();
-    if (!out.flush()) throw InputError(folder + "/calib.txt", "cannot be written");
+    if (!out.flush()) throw InputError(file(middeval3::kCalib), "cannot be written");
   });
-  write_image(folder + "/im0.png", views.im0);
-  write_image(folder + "/im1.png", views.im1);
-  write_image(folder + "/im0_passive.png", views.im0_passive);
-  write_image(folder + "/im1_passive.png", views.im1_passive);
-  write_pfm(folder + "/disp0GT.pfm", views.disp0);
-  write_pfm(folder + "/disp1GT.pfm", views.disp1);
-  write_image(folder + "/mask0nocc.png", views.nocc0);
+  write_image(file(middeval3::kLeftImage), views.im0);
+  write_image(file(middeval3::kRightImage), views.im1);
+  write_image(file(middeval3::kLeftPassive), views.im0_passive);
+  write_image(file(middeval3::kRightPassive), views.im1_passive);
+  write_pfm(file(middeval3::kLeftTruth), views.disp0);
+  write_pfm(file(middeval3::kRightTruth), views.disp1);
+  write_image(file(middeval3::kNonoccMask), views.nocc0);
 
   // The BOP writer lays out a split folder (root/<scene>/...); the bin folder is the
   // scene folder itself, so its one scene is written aside and moved up.

@@ -367,8 +367,7 @@ void OpenClStages::large_segment_mask(const Buffer<float>& disparity, int width,
                           changed);
   segment_flatten_.set_args(width, height, labels);
   // Every round that reports a change links at least one root under another, so this
-  // ends (on PoCL, Motorcycle's mask after the final median takes 2 rounds; a GPU that
-  // runs the work items in another order may need more).
+  // ends; how many rounds depends on the order the device runs the work items in.
   for (;;) {
     changed.fill(0);
     launch(segment_merge_, width, height);

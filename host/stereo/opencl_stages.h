@@ -29,8 +29,7 @@ class OpenClStages {
   // Spatial candidates propagate_spatial costs in one pass over the window
   // (PMS_SPATIAL_GROUP): their own view's samples are loaded once for all of them. 1 to
   // 8, same bytes whatever the count (tested). 8, the candidates of the near rings and
-  // of the far ones alike, is the fastest: on PoCL it takes propagate_spatial's device
-  // time on Motorcycle to 0.73x that of one candidate per pass.
+  // of the far ones alike, is the fastest (docs/tuning-log.md has the times).
   static constexpr int kDefaultSpatialGroup = 8;
 
   // Builds the programs (or takes them from the context's cache). `profiler` (may be

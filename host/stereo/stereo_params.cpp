@@ -110,65 +110,41 @@ SpeedKnobs accurate_preset() {
 
 // Window steps 3 / 5 / 6 (coarsest level / levels between / finest: 144, 49 and 25 of
 // the 35x35 window's pixels instead of 324, 81 and 81) and one iteration on every finer
-// level (the finest level's refill iteration stays). The fast mode's targets are at
-// most 2 s per scene on 2 cores with bad-2 below 12 % (15 MiddEval3 Q scenes); of the
-// window-step and iteration combinations tried within 2 s, this is the most accurate:
-// 11.45 % (seed 1) in 1.81 s per scene on PoCL, 2 cores, against the defaults' 10.79 %.
-// The other combinations are in docs/tuning-log.md.
+// level (the finest level's refill iteration stays). Of the window-step and iteration
+// combinations within the fast mode's time target (docs/tuning-log.md has the targets and
+// every combination's figures), the most accurate.
 SpeedKnobs fast_preset() { return {3, 5, 6, 1, 1}; }
 
 // Active stereo (a projected dot pattern on dark, texture-less parts; the projector-lit
 // bins of docs/stereo.md): the accurate preset's speed knobs, the cost truncations and
-// the left/right tolerance below. Tuned on bin00-01, checked on bin02-03.
-// * Truncations. At the true disparity the rendered bins' images differ by a median of
-//   4.8-5.8 (gradient term) and 11-12 (colour term), against tau_gradient 2 and
-//   tau_color 10: the gradient term is saturated at 91 % of the parts' pixels at the true
-//   match (the colour term at 59 %), so the photometric terms barely tell it from a wrong
-//   one and the census alone decides. Truncations far above that residual's 90th
-//   percentile (17 and 30) let the dots' contrast count: bin00 bad-2 all 38.3 -> 35.2 %
-//   with 50 / 100, 35.3 % with 100 / 200 (a plateau), 36.3 % with 20 / 40; raw walls
-//   82 -> 47 %.
-// * Left/right tolerance. The bin walls are steep planes (disparity slopes 2.1 px per
-//   row, 0.86 px per column on the wall that the right view sees compressed about 7x), so
-//   the right view's disparities there are several pixels off and a 1-px check sends the
-//   walls to the background fill: bin00 3 px 33.1 %, 8 px 28.1 %, no check (1000 px)
-//   28.2 % with a larger average error; bin01 3 px 35.5 %, 8 px 30.6 %.
+// the left/right tolerance below. The figures behind each choice are in
+// docs/tuning-log.md ("Preset and stage figures").
+// * Truncations. At the true disparity the rendered bins' images differ by more than
+//   tau_gradient and tau_color, so the photometric terms are saturated at most of the
+//   parts' pixels, barely tell the true match from a wrong one, and the census alone
+//   decides. Truncations far above that residual let the dots' contrast count.
+// * Left/right tolerance. The bin walls are steep planes that the right view sees
+//   compressed, so the right view's disparities there are several pixels off and a 1-px
+//   check sends the walls to the background fill.
 // * Every consistent pixel votes in the hole median (median_background_margin inf):
 //   here most holes are not background but the sides of parts that the right camera does
-//   not see and the walls, and the background bound kept their own surface out: bin00
-//   28.1 -> 24.5 %, bin01 30.6 -> 26.2 %, every class gaining on both.
+//   not see and the walls, and the background bound kept their own surface out.
 // * Windows without texture fail the check (textureless_spread 4 grey levels), and the
 //   fill copies its neighbour's disparity without extrapolating its slope
 //   (fill_max_extrapolation 0): beyond the projector's field the table is as plain as a
-//   passive image, its raw disparities 77 % wrong; the wrong ones that passed the check
-//   were the row-wise fill's background, and a slope carried 100 px drifted off. Our
-//   development bin000 (1280x960): 12.56 -> 5.78 % (the gate alone 12.10, the fill alone
-//   7.89); on the active-bins above, whose sides are a void without ground truth, the
-//   gate alone changes nothing and the flat fill costs 0.27 points (24.57 -> 24.84 %, the
-//   walls' holes lose their slope).
-// * A 25-px support window instead of 35: the dots are dense enough for it, and a
-//   narrower window carries a part's plane less far over the edge onto its neighbour
-//   (foreground fattening). The parts' pixels (BOP masks) of our development bin000
-//   16.65 -> 15.77 %; once on the 4 test bins 17.65 -> 17.01 %, all 5.77 -> 5.51 %; on
-//   the active-bins above parts 34.67 -> 32.83 %, all 24.84 -> 25.10 % (their walls).
-//   Halving the colour bandwidth instead (gamma 5) gained the parts as much and cost the
-//   active-bins' walls 5-13 points.
+//   passive image and its raw disparities mostly wrong; the wrong ones that passed the
+//   check were the row-wise fill's background, and a slope carried far drifted off.
+// * A 25-px support window: the dots are dense enough for it, and a narrower window
+//   carries a part's plane less far over the edge onto its neighbour (foreground
+//   fattening). Halving the colour bandwidth instead gained the parts as much and cost
+//   the walls.
 // * Segments that follow slopes (speckle_slopes): the bin walls and the parts' sides are
 //   seen at a grazing angle (2 px a row), the 1-px rule cut them into row-sized
-//   speckles, and both speckle steps sent them to the floor's disparity (bin00 with both
-//   steps off: walls 58.5 -> 49.8 %, floor 7.6 -> 9.2 %). Chosen on active-bins bin00-01
-//   and our dev bin000; then the active-bins 25.10 -> 23.26 % all (held-out bin02, bin03
-//   20.57 -> 18.65, 27.92 -> 26.61), parts 32.83 -> 31.33, walls 61.4 -> 54.0; our test
-//   bins parts 17.01 -> 16.00 %, all 5.51 -> 5.73 (the table keeps a few more islands).
-// * A 5x5 hole median (median_window 5, was 35): with every consistent pixel voting, a
-//   wide window let the floor around a wall's or a part side's hole outvote the pixels
-//   of the surface itself; 35 / 15 / 9 / 5 / 1 on dev bin000 parts 15.33 / 14.33 / 14.04
-//   / 13.50 / 14.34 %, active-bins bin00 all 24.66 / 23.41 / 22.77 / 21.61 / 22.78. Then
-//   once: active-bins 23.26 -> 20.20 % all (held-out bin02, bin03 18.65 -> 15.31, 26.61
-//   -> 24.74), walls 54.0 -> 41.0, floor 7.3 -> 8.5; test bins all 5.73 -> 5.40, parts
-//   16.00 -> 14.63 %.
-// All four bins: 38.1 -> 24.6 % (held-out bin02, bin03: 32.8 -> 20.2, 41.2 -> 27.4 %).
-// Not for clean images: on the 15 MiddEval3-Q scenes it gives 14.07 % against 10.79 %.
+//   speckles, and both speckle steps sent them to the floor's disparity.
+// * A 5x5 hole median (median_window 5): with every consistent pixel voting, a wide
+//   window lets the floor around a wall's or a part side's hole outvote the pixels of the
+//   surface itself.
+// Not for clean images: on MiddEval3 it is less accurate than the defaults.
 struct ActiveCost {
   int window = 25;
   float tau_color = 100.0f;

@@ -155,7 +155,8 @@ struct StereoParams {
   // beside them to within speckle_range (pms_segment_pair_joined): on a steep surface
   // (a bin wall at a grazing angle, 2 px a row) the plain rule cuts every row into its
   // own small segment, and the refill pulls the wall down to the floor. Off by default
-  // (MiddEval3-Q 10.79 -> 10.96 % with it), on in the active preset (ActiveCost says why).
+  // (on MiddEval3 it costs a little; docs/tuning-log.md), on in the active preset
+  // (ActiveCost says why).
   bool speckle_slopes = false;
   // Before the filling, segments of the finest level's raw left disparities smaller
   // than raw_speckle_size pixels (the same joining rule, speckle_range) count as failing

@@ -4,19 +4,10 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "host/io/id_colour.h"
+
 namespace flexsight {
 namespace {
-
-// A bright colour per object id, the same in every image, so one part type is one
-// colour across the sheet.
-cv::Scalar id_colour(int obj_id) {
-  static const cv::Scalar kPalette[] = {{230, 25, 75},  {60, 180, 75},  {255, 225, 25},
-                                        {0, 130, 200},  {245, 130, 48}, {145, 30, 180},
-                                        {70, 240, 240}, {240, 50, 230}, {210, 245, 60},
-                                        {250, 190, 212}, {0, 128, 128}, {220, 190, 255}};
-  const int count = sizeof kPalette / sizeof kPalette[0];
-  return kPalette[((obj_id % count) + count) % count];
-}
 
 cv::Mat draw_tile(const AnnotatedImage& image, int tile_width) {
   const double scale = static_cast<double>(tile_width) / image.rgb.cols;

@@ -5,11 +5,12 @@
 // light type and position, Gaussian noise, flips and a slight in-plane rotation) but
 // not their ranges; where a default is ours, the comment says why.
 #include "host/render/raycaster.h"
+#include "host/synth/background_effects.h"
 #include "host/synth/depth_noise.h"
 
 namespace flexsight {
 
-struct FullSyntheticSettings {
+struct FullSyntheticSettings : BackgroundEffects {
   // Image size in pixels (--width, --height): the SSD-MobileNet detector's 300x300 input.
   int width = 300;
   int height = 300;
@@ -77,23 +78,7 @@ struct FullSyntheticSettings {
   double min_ambient = 0.05;
   double max_ambient = 0.3;
 
-  // Background: a random image of the library, a crop of it whose shorter side is a
-  // fraction uniform in [min_crop_scale, 1] of the largest crop that fits
-  // (--min-crop-scale), of aspect within a factor exp(+-max_crop_aspect_change) of the
-  // output's (--crop-aspect-change), resized to width x height, mirrored left-right with
-  // probability background_flip_probability (--background-flip).
-  double min_crop_scale = 0.5;
-  double max_crop_aspect_change = 0.1;
-  double background_flip_probability = 0.5;
-
-  // Camera effects on the whole composite, so that part and background share them (a
-  // part with its own grain or sharpness would be a cue real images lack): a Gaussian
-  // blur of sigma uniform in [0, max_blur_sigma] pixels with probability
-  // blur_probability (--blur-probability, --max-blur), then Gaussian noise of sigma
-  // uniform in [0, max_noise_sigma] grey levels (--max-noise).
-  double blur_probability = 0.5;
-  double max_blur_sigma = 1.0;
-  double max_noise_sigma = 6.0;
+  // Background crop and camera effects: BackgroundEffects (background_effects.h).
 
   // Post-processing of the whole image (the paper's flips and slight rotation about the
   // optical axis): flips with these probabilities (--hflip, --vflip; 0.5 each, as the

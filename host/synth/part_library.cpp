@@ -6,36 +6,13 @@
 #include <map>
 #include <stdexcept>
 
+#include "host/io/folder_listing.h"
 #include "host/io/input_error.h"
 
 namespace flexsight {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool is_mesh_file(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".stl" || ext == ".ply" || ext == ".obj";
-}
-
-// The mesh files of `folder`, sorted by name.
-std::vector<fs::path> mesh_files(const std::string& folder) {
-  std::error_code error;
-  if (!fs::exists(folder, error)) throw InputError(folder, "does not exist");
-  if (!fs::is_directory(folder, error)) throw InputError(folder, "is not a folder");
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
-    if (entry.is_regular_file(error) && is_mesh_file(entry.path())) files.push_back(entry.path());
-  }
-  if (error) throw InputError(folder, "cannot be listed (" + error.message() + ")");
-  if (files.empty()) throw InputError(folder, "holds no mesh file (.stl, .ply or .obj)");
-  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-    return a.filename().string() < b.filename().string();
-  });
-  return files;
-}
 
 // Ids from the names when all have one, 1..N otherwise; see load_folder.
 std::vector<int> object_ids(const std::string& folder, const std::vector<fs::path>& files) {
@@ -72,7 +49,8 @@ int object_id_from_name(const std::string& stem) {
 }
 
 PartLibrary PartLibrary::load_folder(const std::string& folder, const MeshOptions& options) {
-  const std::vector<fs::path> files = mesh_files(folder);
+  const std::vector<fs::path> files =
+      files_with_extension(folder, {".stl", ".ply", ".obj"}, "mesh file");
   const std::vector<int> ids = object_ids(folder, files);
   std::vector<LibraryPart> parts;
   for (size_t i = 0; i < files.size(); ++i) {

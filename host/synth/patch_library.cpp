@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/io/atomic_file.h"
+#include "host/io/folder_listing.h"
 #include "host/io/input_error.h"
 #include "host/synth/part_library.h"
 
@@ -17,12 +18,6 @@ namespace fs = std::filesystem;
 bool is_mask_file(const fs::path& path) {
   const std::string stem = path.stem().string();
   return stem.size() > 5 && stem.compare(stem.size() - 5, 5, "_mask") == 0;
-}
-
-bool is_image_file(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
-  return extension == ".png" || extension == ".jpg" || extension == ".jpeg";
 }
 
 // Reads one patch: the colour, and the mask from the alpha channel or the _mask file.
@@ -67,14 +62,8 @@ Patch read_patch(const fs::path& path, int obj_id) {
 std::vector<Patch> load_patch_library(const std::string& folder) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw InputError(folder, "is not a folder of patches");
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(folder, ec)) {
-    if (entry.is_regular_file() && is_image_file(entry.path()) && !is_mask_file(entry.path())) {
-      files.push_back(entry.path());
-    }
-  }
-  if (ec) throw InputError(folder, "cannot be listed: " + ec.message());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = files_with_extension_below(
+      folder, {".png", ".jpg", ".jpeg"}, [](const fs::path& path) { return !is_mask_file(path); });
   std::vector<Patch> patches;
   for (const fs::path& file : files) {
     const int obj_id = object_id_from_name(file.parent_path().filename().string());

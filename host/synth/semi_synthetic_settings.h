@@ -4,10 +4,11 @@
 // occlusion cap, background crop, camera effects), so do default and reason: the two
 // data sets differ in where the parts' pixels come from, not in layout.
 #include "host/render/raycaster.h"
+#include "host/synth/background_effects.h"
 
 namespace flexsight {
 
-struct SemiSyntheticSettings {
+struct SemiSyntheticSettings : BackgroundEffects {
   int width = 300;  // --size WxH: the detector's input
   int height = 300;
 
@@ -38,13 +39,7 @@ struct SemiSyntheticSettings {
   double min_visible_fraction = 0.5;
   int pose_attempts = 5;
 
-  // Background crop and camera effects, as in full_synthetic_settings.h.
-  double min_crop_scale = 0.5;
-  double max_crop_aspect_change = 0.1;
-  double background_flip_probability = 0.5;
-  double blur_probability = 0.5;
-  double max_blur_sigma = 1.0;
-  double max_noise_sigma = 6.0;
+  // Background crop and camera effects: BackgroundEffects (background_effects.h).
 
   bool store_masks = true;
 
