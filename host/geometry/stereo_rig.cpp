@@ -81,6 +81,21 @@ StereoCamera StereoRig::stereo_camera() const {
   return camera;
 }
 
+StereoRig stereo_rig_from(const StereoCamera& camera, int width, int height) {
+  const Eigen::Matrix4d& Q = camera.Q;
+  StereoRig rig;
+  rig.left.fx = rig.left.fy = Q(2, 3);
+  rig.left.cx = -Q(0, 3);
+  rig.left.cy = -Q(1, 3);
+  rig.left.width = width;
+  rig.left.height = height;
+  rig.baseline_mm = 1.0 / Q(3, 2);
+  rig.doffs = Q(3, 3) / Q(3, 2);
+  rig.right = rig.left;
+  rig.right.cx = rig.left.cx + rig.doffs;
+  return rig;
+}
+
 std::string StereoRig::calib_text() const {
   char text[512];
   std::snprintf(text, sizeof text,

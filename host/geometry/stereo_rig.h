@@ -107,6 +107,11 @@ struct StereoRig {
   std::string calib_text() const;
 };
 
+// The rig a calibration file's Q describes, for images of width x height: f = Q[2][3],
+// left principal point (-Q[0][3], -Q[1][3]), baseline 1 / Q[3][2] (in camera.unit) and
+// doffs Q[3][3] / Q[3][2] (px). The inverse of StereoRig::stereo_camera.
+StereoRig stereo_rig_from(const StereoCamera& camera, int width, int height);
+
 // The bin simulator's rule (see the top of this file). Throws InputError naming the
 // option (--size, --baseline, --distance, --volume, --focal) for a size or length that
 // is not positive or not finite, a volume that reaches the cameras, or a focal length
