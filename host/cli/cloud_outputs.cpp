@@ -5,6 +5,7 @@
 
 #include "host/cli/arguments.h"
 #include "host/geometry/cloud_render.h"
+#include "host/geometry/depth_from_disparity.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
@@ -76,7 +77,7 @@ void write_cloud_outputs(const CloudOutputOptions& options, const cv::Mat& dispa
   const StereoCamera camera = sized_camera(options, disparity.cols, disparity.rows);
   if (!options.depth.empty()) {
     const double metres = options.depth_unit == "m" ? 1.0 : 1e-3;
-    write_pfm(options.depth, depth_map(disparity, camera, metres));
+    write_pfm(options.depth, depth_from_disparity(disparity, camera, metres, DepthRule::cloud()));
     std::printf("wrote %s (depth in %s)\n", options.depth.c_str(), options.depth_unit.c_str());
   }
   if (options.ply.empty() && options.render.empty()) return;

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
+#include "host/geometry/depth_from_disparity.h"
 #include "host/io/input_error.h"
 #include "host/stereo/disparity_upsampling.h"
 
@@ -121,14 +122,7 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.seconds.stereo = seconds_since(start);
 
   start = Clock::now();
-  const double to_mm = rig.metres_per_unit * 1000.0;
-  result.depth_mm = cv::Mat(left_rgb8.size(), CV_32FC1, cv::Scalar(0));
-  for (int y = 0; y < result.depth_mm.rows; ++y) {
-    for (int x = 0; x < result.depth_mm.cols; ++x) {
-      const double z = rig.depth(result.disparity.at<float>(y, x)) * to_mm;
-      if (std::isfinite(z) && z > 0.0) result.depth_mm.at<float>(y, x) = static_cast<float>(z);
-    }
-  }
+  result.depth_mm = depth_from_disparity(result.disparity, rig, 1e-3, DepthRule::pick());
   result.floor_depth_mm = floor_depth_mm(result.depth_mm);
   result.seconds.depth = seconds_since(start);
 

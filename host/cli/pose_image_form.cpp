@@ -15,6 +15,7 @@
 #include "host/cli/pose_inputs.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/dataset_files.h"
+#include "host/geometry/depth_from_disparity.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/io/atomic_file.h"
 #include "host/io/image_io.h"
@@ -102,7 +103,6 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
                                      std::to_string(bgr.rows));
   }
   const PinholeCamera camera = left_camera(rig, bgr.size());
-  const double to_mm = rig.metres_per_unit * 1000.0;
   const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
   const cv::Mat input = read_pfm(depth_source);
   if (input.size() != bgr.size()) {
@@ -110,12 +110,14 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
                                        ", the image " + std::to_string(bgr.cols) + " x " + std::to_string(bgr.rows));
   }
   cv::Mat depth(bgr.size(), CV_32FC1, cv::Scalar(0));
-  for (int y = 0; y < depth.rows; ++y) {
-    for (int x = 0; x < depth.cols; ++x) {
-      const float v = input.at<float>(y, x);
-      if (!std::isfinite(v) || v <= 0.0f) continue;
-      const double z = depth_path.empty() ? rig.depth(v) * to_mm : v;
-      if (std::isfinite(z) && z > 0.0) depth.at<float>(y, x) = static_cast<float>(z);
+  if (depth_path.empty()) {
+    depth = depth_from_disparity(input, rig, 1e-3, DepthRule::pose_input());
+  } else {
+    for (int y = 0; y < depth.rows; ++y) {
+      for (int x = 0; x < depth.cols; ++x) {
+        const float v = input.at<float>(y, x);
+        if (std::isfinite(v) && v > 0.0f) depth.at<float>(y, x) = v;
+      }
     }
   }
   const PoseModels models(templates, cad_dir);

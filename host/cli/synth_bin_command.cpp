@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 std::vector<SettingOption> bin_setting_options(BinSimSettings& s) {
   return {
       {"baseline", &s.rig.baseline_mm, nullptr, "between the camera centres, mm"},
-      {"distance", &s.rig.distance_mm, nullptr, "from the cameras to the volume's centroid, mm"},
+      {"distance", &s.rig.volume.distance, nullptr, "from the cameras to the volume's centroid, mm"},
       {"focal", &s.rig.focal_px, nullptr, "focal length, pixels (0: fill the views with the volume)"},
       {"wall-thickness", &s.bin.wall_thickness_mm, nullptr, "bin walls, mm"},
       {"floor-thickness", &s.bin.floor_thickness_mm, nullptr, "bin floor, mm"},
@@ -100,8 +100,8 @@ int run_synth_bin_command(std::vector<std::string> args) {
   const std::string threads_text = take_option(args, "--threads");
   const double power = take_number_option(args, "--projector-power", settings.projector.power);
   take_size_option(args, settings.rig.width, settings.rig.height);
-  take_triple_option(args, "--volume", settings.rig.volume_x_mm, settings.rig.volume_y_mm,
-                     settings.rig.volume_z_mm);
+  take_triple_option(args, "--volume", settings.rig.volume.width, settings.rig.volume.height,
+                     settings.rig.volume.depth);
   take_triple_option(args, "--bin", settings.bin.length_mm, settings.bin.width_mm,
                      settings.bin.wall_height_mm);
   take_settings_options(args, bin_setting_options(settings));

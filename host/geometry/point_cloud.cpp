@@ -142,18 +142,4 @@ PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
   return cloud;
 }
 
-cv::Mat depth_map(const cv::Mat& disparity, const StereoCamera& camera,
-                  double metres_per_unit_out) {
-  cv::Mat depth(disparity.size(), CV_32FC1);
-  const double scale = camera.metres_per_unit / metres_per_unit_out;
-  for (int y = 0; y < disparity.rows; ++y) {
-    for (int x = 0; x < disparity.cols; ++x) {
-      const float d = disparity.at<float>(y, x);
-      depth.at<float>(y, x) = has_disparity(d) ? static_cast<float>(camera.depth(d) * scale)
-                                               : std::numeric_limits<float>::quiet_NaN();
-    }
-  }
-  return depth;
-}
-
 }  // namespace flexsight

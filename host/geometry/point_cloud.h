@@ -52,8 +52,4 @@ PointCloud build_point_cloud(const cv::Mat& disparity, const cv::Mat& left_rgb,
                              const StereoCamera& camera, const CloudFilter& filter = {},
                              const NormalOptions& normals = {});
 
-// Depth Z per pixel in metres_per_unit_out (1e-3 for millimetres, 1 for metres); NaN
-// where the disparity has no depth.
-cv::Mat depth_map(const cv::Mat& disparity, const StereoCamera& camera, double metres_per_unit_out);
-
 }  // namespace flexsight

@@ -13,26 +13,11 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "host/geometry/pinhole_camera.h"
+#include "host/geometry/pose.h"
 #include "host/render/mesh.h"
 
 namespace flexsight {
-
-// A rigid pose: a model point x appears at R x + t in the camera frame (mm).
-struct Pose {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-};
-
-struct PinholeCamera {
-  double fx = 600.0, fy = 600.0;  // focal lengths in pixels
-  double cx = 319.5, cy = 239.5;  // principal point in pixels
-  int width = 640, height = 480;
-  // Throws InputError ("camera: ...") for a size or focal length that is not positive
-  // or not finite.
-  void check() const;
-  // The pixel coordinates where camera-frame point p appears (p.z > 0).
-  Eigen::Vector2d project(const Eigen::Vector3d& p) const;
-};
 
 // How a surface looks under the shading of host/render/shading.h.
 struct Material {

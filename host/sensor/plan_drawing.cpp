@@ -111,8 +111,11 @@ cv::Mat draw_top_view(const StereoRig& rig, const WorkingVolume& volume, const V
   View view;
   view.title = "top view (x across, z down)";
   view.across_name = "x";
-  for (const PinholeCamera& cam : {rig.left(), rig.right()}) {
-    view.frustums.push_back({cam.centre_x, -cam.cx / cam.focal_px, (cam.width - cam.cx) / cam.focal_px, kGreen});
+  const double centres[2] = {rig.left_centre_x(), rig.right_centre_x()};
+  const PinholeCamera* cameras[2] = {&rig.left, &rig.right};
+  for (int i = 0; i < 2; ++i) {
+    const PinholeCamera& cam = *cameras[i];
+    view.frustums.push_back({centres[i], -cam.cx / cam.fx, (cam.width - cam.cx) / cam.fx, kGreen});
   }
   const double tp = tan_half(rig.projector.hfov_deg);
   view.frustums.push_back({rig.projector.centre_x, -tp, tp, kOrange});
@@ -131,8 +134,8 @@ cv::Mat draw_side_view(const StereoRig& rig, const WorkingVolume& volume, const 
   View view;
   view.title = "side view (y across, z down; the cameras and the projector line up)";
   view.across_name = "y";
-  const PinholeCamera cam = rig.left();  // both cameras share their vertical frustum
-  view.frustums.push_back({0.0, -cam.cy / cam.focal_px, (cam.height - cam.cy) / cam.focal_px, kGreen});
+  const PinholeCamera& cam = rig.left;  // both cameras share their vertical frustum
+  view.frustums.push_back({0.0, -cam.cy / cam.fx, (cam.height - cam.cy) / cam.fx, kGreen});
   const double tp = tan_half(rig.projector.vfov_deg);
   view.frustums.push_back({0.0, -tp, tp, kOrange});
   view.devices = {{0.0, kRed, "C1 C2 P"}};

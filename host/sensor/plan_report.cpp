@@ -80,7 +80,7 @@ std::vector<Section> sections(const SensorPlan& p) {
       {"cameras", fmt("%.0f x %.0f px (%.1f MP)", in.width, in.height, in.width * in.height / 1e6) +
                       fmt(", pixel %.2f um (sensor %.2f x %.2f mm)", um, px_to_mm(in.width, um),
                           px_to_mm(in.height, um))},
-      {"focal length", fmt("%.1f px = %.2f mm", p.rig.focal_px, p.focal_mm) +
+      {"focal length", fmt("%.1f px = %.2f mm", p.rig.focal(), p.focal_mm) +
                            (p.focal_fitted ? (p.doffs_centred ? " (the largest at which the volume fits both images)"
                                                 : " (the largest at which the volume fits both images with the "
                                                   "centring doffs, not necessarily with this one)")
@@ -88,7 +88,7 @@ std::vector<Section> sections(const SensorPlan& p) {
       {"field of view", fmt("%.2f x %.2f deg", p.hfov_deg, p.vfov_deg)},
       {"volume fits both images up to", fmt("f = %.1f px = %.2f mm", p.fitting_focal_px,
                                                px_to_mm(p.fitting_focal_px, um))},
-      {"doffs (cx right - cx left)", fmt("%.1f px", p.rig.doffs_px) +
+      {"doffs (cx right - cx left)", fmt("%.1f px", p.rig.doffs) +
                                          (p.doffs_centred ? " (centres the volume in both images)" : "")},
       {"projector", fmt("%.1f x %.1f deg at x = %.1f mm", in.projector_hfov_deg, in.projector_vfov_deg,
                         in.projector_offset_mm)},
@@ -110,10 +110,10 @@ std::vector<Section> sections(const SensorPlan& p) {
     coverage.rows.push_back({"corner " + k.name, devices_text(k.seen)});
   }
   coverage.rows.push_back(
-      {"unseen region", c.any_unseen ? fmt("x %.0f..%.0f, ", c.unseen_min.x, c.unseen_max.x) +
-                                           fmt("y %.0f..%.0f, ", c.unseen_min.y, c.unseen_max.y) +
+      {"unseen region", c.any_unseen ? fmt("x %.0f..%.0f, ", c.unseen_min.x(), c.unseen_max.x()) +
+                                           fmt("y %.0f..%.0f, ", c.unseen_min.y(), c.unseen_max.y()) +
                                            fmt("z %.0f..%.0f mm (bounding box of unseen samples)",
-                                               c.unseen_min.z, c.unseen_max.z)
+                                               c.unseen_min.z(), c.unseen_max.z())
                                      : std::string("none")});
   out.push_back(coverage);
 
@@ -127,7 +127,7 @@ std::vector<Section> sections(const SensorPlan& p) {
       {"with doffs (f B / Z - doffs)", fmt("%.1f (near) .. %.1f (far) px", clean(p.disparity_near), clean(p.disparity_far))},
       {"matcher (searches 0..ndisp-1)",
        fmt("ndisp %.0f once the pair is shifted by %.0f px to doffs ", p.ndisp, p.matcher_shift_px) +
-           fmt("%.1f px (far plane at disparity >= 0)", p.rig.doffs_px + p.matcher_shift_px)},
+           fmt("%.1f px (far plane at disparity >= 0)", p.rig.doffs + p.matcher_shift_px)},
   }});
 
   out.push_back({fmt("The paper's %.2g mm at the far plane", in.target_dz_mm), {
@@ -179,7 +179,7 @@ std::string plan_markdown(const SensorPlan& plan) {
 std::string plan_json(const SensorPlan& p) {
   const SensorPlanInputs& in = p.inputs;
   const WorkingVolume& v = in.volume;
-  auto point = [](const Point3& q) { return Json::array({q.x, q.y, q.z}); };
+  auto point = [](const Eigen::Vector3d& q) { return Json::array({q.x(), q.y(), q.z()}); };
   auto region = [](const RegionCoverage& r) {
     return Json{{"name", r.name},   {"samples", r.samples},     {"all_percent", r.all},
                 {"left_percent", r.left}, {"right_percent", r.right}, {"projector_percent", r.projector},
@@ -189,9 +189,9 @@ std::string plan_json(const SensorPlan& p) {
   j["inputs"] = {{"baseline_mm", in.baseline_mm},
                  {"image_size", Json::array({in.width, in.height})},
                  {"pixel_um", in.pixel_um},
-                 {"focal_px", p.rig.focal_px},
+                 {"focal_px", p.rig.focal()},
                  {"focal_fitted", p.focal_fitted},
-                 {"doffs_px", p.rig.doffs_px},
+                 {"doffs_px", p.rig.doffs},
                  {"doffs_centred", p.doffs_centred},
                  {"projector_fov_deg", Json::array({in.projector_hfov_deg, in.projector_vfov_deg})},
                  {"projector_offset_mm", in.projector_offset_mm},
@@ -200,8 +200,9 @@ std::string plan_json(const SensorPlan& p) {
                  {"subpixel_px", in.subpixel_px},
                  {"target_dz_mm", in.target_dz_mm},
                  {"grid_mm", in.grid_mm}};
-  const PinholeCamera left = p.rig.left(), right = p.rig.right();
-  j["camera"] = {{"focal_px", p.rig.focal_px},   {"focal_mm", p.focal_mm},
+  const PinholeCamera& left = p.rig.left;
+  const PinholeCamera& right = p.rig.right;
+  j["camera"] = {{"focal_px", p.rig.focal()},   {"focal_mm", p.focal_mm},
                  {"hfov_deg", p.hfov_deg},       {"vfov_deg", p.vfov_deg},
                  {"fitting_focal_px", p.fitting_focal_px},
                  {"cx_left", left.cx},           {"cx_right", right.cx},
@@ -229,11 +230,11 @@ std::string plan_json(const SensorPlan& p) {
                            {"dz_far_mm", p.dz_far_mm},          {"pixel_near_mm", p.pixel_near_mm},
                            {"pixel_far_mm", p.pixel_far_mm}};
   j["disparity"] = {{"raw_near_px", p.raw_disparity_near}, {"raw_far_px", p.raw_disparity_far},
-                    {"doffs_px", p.rig.doffs_px},          {"near_px", p.disparity_near},
+                    {"doffs_px", p.rig.doffs},          {"near_px", p.disparity_near},
                     {"far_px", p.disparity_far},           {"min_px", p.disparity_far},
                     {"max_px", p.disparity_near},          {"ndisp", p.ndisp},
                     {"matcher_shift_px", p.matcher_shift_px},
-                    {"matcher_doffs_px", p.rig.doffs_px + p.matcher_shift_px}};
+                    {"matcher_doffs_px", p.rig.doffs + p.matcher_shift_px}};
   j["target_dz"] = {{"target_dz_mm", in.target_dz_mm},
                     {"far_z_mm", v.far_z()},
                     {"subpixel_px_at_focal", p.subpixel_for_target},

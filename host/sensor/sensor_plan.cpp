@@ -12,35 +12,33 @@ SensorPlan make_sensor_plan(const SensorPlanInputs& in) {
   const WorkingVolume& vol = in.volume;
   plan.fitting_focal_px = fitting_focal(in.baseline_mm, vol, in.width, in.height);
 
-  StereoRig& rig = plan.rig;
-  rig.baseline_mm = in.baseline_mm;
-  rig.width = in.width;
-  rig.height = in.height;
   plan.focal_fitted = !in.focal_px.has_value();
-  rig.focal_px = in.focal_px.value_or(plan.fitting_focal_px);
+  const double focal_px = in.focal_px.value_or(plan.fitting_focal_px);
   plan.doffs_centred = !in.doffs_px.has_value();
-  rig.doffs_px = in.doffs_px ? *in.doffs_px : centring_doffs(rig.focal_px, in.baseline_mm, vol);
-  rig.projector = {in.projector_offset_mm, in.projector_hfov_deg, in.projector_vfov_deg};
+  const double doffs_px = in.doffs_px ? *in.doffs_px : centring_doffs(focal_px, in.baseline_mm, vol);
+  plan.rig = make_centred_stereo_rig(in.baseline_mm, in.width, in.height, focal_px, doffs_px,
+                                     {in.projector_offset_mm, in.projector_hfov_deg, in.projector_vfov_deg});
+  const StereoRig& rig = plan.rig;
 
-  plan.hfov_deg = hfov_from_focal(rig.focal_px, in.width);
-  plan.vfov_deg = hfov_from_focal(rig.focal_px, in.height);
-  plan.focal_mm = px_to_mm(rig.focal_px, in.pixel_um);
+  plan.hfov_deg = hfov_from_focal(rig.focal(), in.width);
+  plan.vfov_deg = hfov_from_focal(rig.focal(), in.height);
+  plan.focal_mm = px_to_mm(rig.focal(), in.pixel_um);
 
   const double zn = vol.near_z(), zf = vol.far_z();
-  plan.dz_near_mm = depth_step(zn, rig.focal_px, in.baseline_mm, in.subpixel_px);
-  plan.dz_far_mm = depth_step(zf, rig.focal_px, in.baseline_mm, in.subpixel_px);
-  plan.pixel_near_mm = zn / rig.focal_px;
-  plan.pixel_far_mm = zf / rig.focal_px;
+  plan.dz_near_mm = depth_step(zn, rig.focal(), in.baseline_mm, in.subpixel_px);
+  plan.dz_far_mm = depth_step(zf, rig.focal(), in.baseline_mm, in.subpixel_px);
+  plan.pixel_near_mm = zn / rig.focal();
+  plan.pixel_far_mm = zf / rig.focal();
 
-  plan.raw_disparity_near = rig.focal_px * in.baseline_mm / zn;
-  plan.raw_disparity_far = rig.focal_px * in.baseline_mm / zf;
-  plan.disparity_near = rig.disparity_at(zn);
-  plan.disparity_far = rig.disparity_at(zf);
+  plan.raw_disparity_near = rig.focal() * in.baseline_mm / zn;
+  plan.raw_disparity_far = rig.focal() * in.baseline_mm / zf;
+  plan.disparity_near = rig.disparity(zn);
+  plan.disparity_far = rig.disparity(zf);
   plan.matcher_shift_px = static_cast<int>(std::floor(plan.disparity_far));
   plan.ndisp = static_cast<int>(std::ceil(plan.disparity_near - plan.matcher_shift_px)) + 1;
 
   const double target = in.target_dz_mm;
-  plan.subpixel_for_target = subpixel_for_depth_step(zf, target, rig.focal_px, in.baseline_mm);
+  plan.subpixel_for_target = subpixel_for_depth_step(zf, target, rig.focal(), in.baseline_mm);
   plan.focal_for_target_px = focal_for_depth_step(zf, target, in.baseline_mm, in.subpixel_px);
   plan.focal_for_target_1px = focal_for_depth_step(zf, target, in.baseline_mm, 1.0);
   plan.focal_for_lateral_target = zf / target;

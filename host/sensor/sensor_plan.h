@@ -12,7 +12,7 @@
 namespace flexsight {
 
 struct SensorPlanInputs {
-  double baseline_mm = 500.0;
+  double baseline_mm = StereoRigSettings().baseline_mm;
   int width = 4000, height = 3000;  // 12 MP
   // Unset: the largest focal length at which the volume fits both images (fitting_focal).
   std::optional<double> focal_px;

@@ -29,7 +29,7 @@ double cell_centre(double lo, double size, int cells, int i) { return lo + (i + 
 
 // One face of the box sampled on the grid of its two in-plane axes.
 RegionCoverage face_coverage(const StereoRig& rig, const std::string& name, int na, int nb,
-                             const std::function<Point3(int, int)>& point) {
+                             const std::function<Eigen::Vector3d(int, int)>& point) {
   Tally tally;
   for (int a = 0; a < na; ++a) {
     for (int b = 0; b < nb; ++b) tally.add(seen_by(rig, point(a, b)));
@@ -39,8 +39,9 @@ RegionCoverage face_coverage(const StereoRig& rig, const std::string& name, int 
 
 }  // namespace
 
-unsigned seen_by(const StereoRig& rig, const Point3& p) {
-  return (rig.left().sees(p) ? kSeenByLeft : 0u) | (rig.right().sees(p) ? kSeenByRight : 0u) |
+unsigned seen_by(const StereoRig& rig, const Eigen::Vector3d& p) {
+  return (camera_sees(rig.left, rig.left_centre_x(), p) ? kSeenByLeft : 0u) |
+         (camera_sees(rig.right, rig.right_centre_x(), p) ? kSeenByRight : 0u) |
          (rig.projector.sees(p) ? kSeenByProjector : 0u);
 }
 
@@ -70,7 +71,7 @@ VolumeCoverage measure_coverage(const StereoRig& rig, const WorkingVolume& volum
     Tally& slab = slabs[std::min(slab_count - 1, k * slab_count / nz)];
     for (int j = 0; j < ny; ++j) {
       for (int i = 0; i < nx; ++i) {
-        const Point3 p{x_at(i), y_at(j), z_at(k)};
+        const Eigen::Vector3d p(x_at(i), y_at(j), z_at(k));
         const unsigned seen = seen_by(rig, p);
         whole.add(seen);
         slab.add(seen);
@@ -78,10 +79,10 @@ VolumeCoverage measure_coverage(const StereoRig& rig, const WorkingVolume& volum
         out.top_unseen(k, i) += 1.0f / ny;
         out.side_unseen(k, j) += 1.0f / nx;
         out.any_unseen = true;
-        out.unseen_min = {std::min(out.unseen_min.x, p.x), std::min(out.unseen_min.y, p.y),
-                          std::min(out.unseen_min.z, p.z)};
-        out.unseen_max = {std::max(out.unseen_max.x, p.x), std::max(out.unseen_max.y, p.y),
-                          std::max(out.unseen_max.z, p.z)};
+        out.unseen_min = {std::min(out.unseen_min.x(), p.x()), std::min(out.unseen_min.y(), p.y()),
+                          std::min(out.unseen_min.z(), p.z())};
+        out.unseen_max = {std::max(out.unseen_max.x(), p.x()), std::max(out.unseen_max.y(), p.y()),
+                          std::max(out.unseen_max.z(), p.z())};
       }
     }
   }
@@ -96,26 +97,26 @@ VolumeCoverage measure_coverage(const StereoRig& rig, const WorkingVolume& volum
 
   // The faces lie on the box's planes themselves, where coverage is lost first.
   out.faces.push_back(face_coverage(rig, "near", nx, ny, [&](int a, int b) {
-    return Point3{x_at(a), y_at(b), volume.near_z()};
+    return Eigen::Vector3d{x_at(a), y_at(b), volume.near_z()};
   }));
   out.faces.push_back(face_coverage(rig, "far", nx, ny, [&](int a, int b) {
-    return Point3{x_at(a), y_at(b), volume.far_z()};
+    return Eigen::Vector3d{x_at(a), y_at(b), volume.far_z()};
   }));
   out.faces.push_back(face_coverage(rig, "left", ny, nz, [&](int a, int b) {
-    return Point3{volume.min_x(), y_at(a), z_at(b)};
+    return Eigen::Vector3d{volume.min_x(), y_at(a), z_at(b)};
   }));
   out.faces.push_back(face_coverage(rig, "right", ny, nz, [&](int a, int b) {
-    return Point3{volume.max_x(), y_at(a), z_at(b)};
+    return Eigen::Vector3d{volume.max_x(), y_at(a), z_at(b)};
   }));
   out.faces.push_back(face_coverage(rig, "top", nx, nz, [&](int a, int b) {
-    return Point3{x_at(a), volume.min_y(), z_at(b)};
+    return Eigen::Vector3d{x_at(a), volume.min_y(), z_at(b)};
   }));
   out.faces.push_back(face_coverage(rig, "bottom", nx, nz, [&](int a, int b) {
-    return Point3{x_at(a), volume.max_y(), z_at(b)};
+    return Eigen::Vector3d{x_at(a), volume.max_y(), z_at(b)};
   }));
 
   for (int c = 0; c < 8; ++c) {
-    const Point3 p = volume.corner(c);
+    const Eigen::Vector3d p = volume.corner(c);
     const std::string name = std::string((c & 4) ? "far" : "near") + ((c & 2) ? " bottom" : " top") +
                              ((c & 1) ? " right" : " left");
     out.corners[c] = {name, p, seen_by(rig, p)};

@@ -16,7 +16,8 @@ namespace flexsight {
 // Which devices see a point, as bits.
 enum SeenBy : unsigned { kSeenByLeft = 1u, kSeenByRight = 2u, kSeenByProjector = 4u, kSeenByAll = 7u };
 
-unsigned seen_by(const StereoRig& rig, const Point3& p);
+// p in the rig frame (stereo_rig.h).
+unsigned seen_by(const StereoRig& rig, const Eigen::Vector3d& p);
 
 // Percent of the samples of a region seen by each device and by all three.
 struct RegionCoverage {
@@ -27,7 +28,7 @@ struct RegionCoverage {
 
 struct CornerCoverage {
   std::string name;  // "near top left", ... (top: smallest y, left: smallest x)
-  Point3 point;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
   unsigned seen = 0;
 };
 
@@ -40,7 +41,7 @@ struct VolumeCoverage {
   std::array<CornerCoverage, 8> corners;
   // Bounding box of the samples not seen by all three (valid when any is unseen).
   bool any_unseen = false;
-  Point3 unseen_min, unseen_max;
+  Eigen::Vector3d unseen_min = Eigen::Vector3d::Zero(), unseen_max = Eigen::Vector3d::Zero();
   // Fraction of each column not seen by all three, for the pictures: top view rows z,
   // columns x (nz x nx); side view rows z, columns y (nz x ny).
   cv::Mat1f top_unseen, side_unseen;

@@ -139,7 +139,7 @@ View render_view(RenderScene& scene, const std::vector<Pose>& world_poses, const
   cast.threads = settings.threads;
   view.cast = raycast(scene, camera, cast);
   view.passive = shade_linear(scene, view.cast, room_lighting(settings, rig, right, seed));
-  Eigen::Vector3d projector = projector_position_left(rig);
+  Eigen::Vector3d projector = rig.projector_in_left();
   if (right) projector.x() -= rig.baseline_mm;
   view.active = view.passive +
                 projector_radiance(scene, view.cast, camera, projector, simulator.pattern(), settings.threads);
@@ -154,10 +154,6 @@ cv::Mat to_8bit(const cv::Mat& radiance, double noise_sigma, std::uint64_t key) 
 }
 
 }  // namespace
-
-Eigen::Vector3d projector_position_left(const StereoRig& rig) {
-  return Eigen::Vector3d(0.5 * rig.baseline_mm, 0.0, 0.0);
-}
 
 cv::Mat disparity_from_depth(const StereoRig& rig, const cv::Mat& depth) {
   cv::Mat disparity(depth.size(), CV_32FC1);

@@ -62,9 +62,6 @@ class BinSimulator {
   std::shared_ptr<const Mesh> bin_mesh_, table_mesh_;
 };
 
-// Where the projector sits in the left camera's frame: the middle of the baseline.
-Eigen::Vector3d projector_position_left(const StereoRig& rig);
-
 // The left view's non-occluded pixels from both views' depth and instance images: a
 // left pixel's point, moved into the right view by its disparity, is seen there when the
 // right pixel on either side of it shows the same instance at the same depth (within

@@ -32,12 +32,12 @@ void BinSimSettings::check() const {
   const double outer_x = bin.length_mm + 2.0 * bin.wall_thickness_mm;
   const double outer_y = bin.width_mm + 2.0 * bin.wall_thickness_mm;
   const double outer_z = bin.wall_height_mm;
-  if (outer_x > rig.volume_x_mm || outer_y > rig.volume_y_mm || outer_z > rig.volume_z_mm) {
+  if (outer_x > rig.volume.width || outer_y > rig.volume.height || outer_z > rig.volume.depth) {
     char text[256];
     std::snprintf(text, sizeof text,
                   "the bin (%gx%g mm outside its walls, %g mm high) does not fit in the %gx%gx%g mm "
                   "working volume",
-                  outer_x, outer_y, outer_z, rig.volume_x_mm, rig.volume_y_mm, rig.volume_z_mm);
+                  outer_x, outer_y, outer_z, rig.volume.width, rig.volume.height, rig.volume.depth);
     throw InputError("option --bin", text);
   }
   if (min_parts < 1 || max_parts > 200 || min_parts > max_parts) {

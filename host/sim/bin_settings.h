@@ -4,7 +4,7 @@
 // any work, each failure naming its option.
 #include "host/sim/bin_physics.h"
 #include "host/sim/dot_projector.h"
-#include "host/sim/stereo_rig.h"
+#include "host/geometry/stereo_rig.h"
 
 namespace flexsight {
 

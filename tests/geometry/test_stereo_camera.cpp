@@ -3,10 +3,14 @@
 // the formats' own triangulation formulas and cv::reprojectImageTo3D.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 
+#include "host/geometry/depth_from_disparity.h"
 #include "host/geometry/stereo_camera.h"
+#include "host/geometry/stereo_rig.h"
 #include "host/io/input_error.h"
 #include "tests/common/test_support.h"
 
@@ -91,6 +95,54 @@ TEST(MiddleburyCamera, ResizedRigGivesTheSamePoints) {
   const std::string error = error_of([&] { full.resized_to(741, 300); });
   EXPECT_NE(error.find("middeval3_motorcycle_Q.txt"), std::string::npos) << error;
   EXPECT_NE(error.find("not a uniform resize"), std::string::npos) << error;
+}
+
+TEST(StereoRig, MatchesTheCalibrationFileItBecomes) {
+  // The simulator's default rig, as Q and back: the same cameras, baseline and doffs,
+  // and the depth of a disparity is f B / (d + doffs).
+  const StereoRig rig = make_stereo_rig(StereoRigSettings{});
+  const StereoCamera camera = rig.stereo_camera();
+  EXPECT_NEAR(camera.depth(rig.disparity(1234.0)), 1234.0, 1e-9);
+  const StereoRig back = stereo_rig_from(camera, rig.left.width, rig.left.height);
+  EXPECT_DOUBLE_EQ(back.left.fx, rig.left.fx);
+  EXPECT_DOUBLE_EQ(back.left.cx, rig.left.cx);
+  EXPECT_DOUBLE_EQ(back.left.cy, rig.left.cy);
+  EXPECT_NEAR(back.right.cx, rig.right.cx, 1e-9);
+  EXPECT_NEAR(back.baseline_mm, rig.baseline_mm, 1e-9);
+  EXPECT_NEAR(back.doffs, rig.doffs, 1e-9);
+  // The sensor planner's rig puts the image centre on pixel corners, the simulator's on
+  // pixel centres; both shift the principal points by doffs / 2 each way.
+  const StereoRig centred = make_centred_stereo_rig(500.0, 4000, 3000, 7000.0, 100.0, Projector{});
+  EXPECT_EQ(centred.left.cx, 1950.0);
+  EXPECT_EQ(centred.right.cx, 2050.0);
+  EXPECT_EQ(centred.left_centre_x(), -250.0);
+  EXPECT_EQ(centred.projector_in_left().x(), 250.0);
+}
+
+TEST(DepthFromDisparity, EachRuleKeepsItsPixels) {
+  const StereoCamera camera = read_stereo_camera(testing_support::fixture_dir() + "/calib.txt");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // 80 * 750 / (d + 26): d = 10 gives 1666.7 mm; -26 is at infinity; -30 is behind it.
+  const cv::Mat disparity = (cv::Mat_<float>(1, 5) << 10.0f, 0.0f, -20.0f, -30.0f, nan);
+  const cv::Mat cloud = depth_from_disparity(disparity, camera, 1e-3, DepthRule::cloud());
+  const cv::Mat pick = depth_from_disparity(disparity, camera, 1e-3, DepthRule::pick());
+  const cv::Mat pose = depth_from_disparity(disparity, camera, 1e-3, DepthRule::pose_input());
+  const float z10 = static_cast<float>(80.0 * 750 / 36), z0 = static_cast<float>(80.0 * 750 / 26),
+              zm20 = static_cast<float>(80.0 * 750 / 6);
+  EXPECT_FLOAT_EQ(cloud.at<float>(0), z10);
+  EXPECT_FLOAT_EQ(cloud.at<float>(1), z0);
+  EXPECT_TRUE(std::isnan(cloud.at<float>(2)));  // a negative disparity is no match
+  EXPECT_TRUE(std::isnan(cloud.at<float>(4)));
+  EXPECT_FLOAT_EQ(pick.at<float>(1), z0);
+  EXPECT_FLOAT_EQ(pick.at<float>(2), zm20);  // pick trusts its own matcher's values
+  EXPECT_EQ(pick.at<float>(3), 0.0f);        // behind infinity
+  EXPECT_EQ(pick.at<float>(4), 0.0f);
+  EXPECT_FLOAT_EQ(pose.at<float>(0), z10);
+  EXPECT_EQ(pose.at<float>(1), 0.0f);  // a file's zero disparity is no match
+  EXPECT_EQ(pose.at<float>(2), 0.0f);
+  // Metres out: the same depths a thousand times smaller.
+  EXPECT_FLOAT_EQ(depth_from_disparity(disparity, camera, 1.0, DepthRule::cloud()).at<float>(0),
+                  static_cast<float>(80.0 * 750 / 36 / 1000));
 }
 
 TEST(MiddleburyCamera, FixtureCalibration) {

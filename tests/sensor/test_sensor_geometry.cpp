@@ -12,33 +12,36 @@ namespace flexsight {
 namespace {
 
 StereoRig rig(double focal, double baseline, double doffs) {
-  StereoRig r;
-  r.focal_px = focal;
-  r.baseline_mm = baseline;
-  r.doffs_px = doffs;
-  r.width = 1000;
-  r.height = 800;
-  return r;
+  return make_centred_stereo_rig(baseline, 1000, 800, focal, doffs, Projector{});
 }
+
+bool project_left(const StereoRig& r, const Eigen::Vector3d& p, double& u, double& v) {
+  return project_from(r.left, r.left_centre_x(), p, u, v);
+}
+bool project_right(const StereoRig& r, const Eigen::Vector3d& p, double& u, double& v) {
+  return project_from(r.right, r.right_centre_x(), p, u, v);
+}
+bool left_sees(const StereoRig& r, const Eigen::Vector3d& p) { return camera_sees(r.left, r.left_centre_x(), p); }
+bool right_sees(const StereoRig& r, const Eigen::Vector3d& p) { return camera_sees(r.right, r.right_centre_x(), p); }
 
 TEST(SensorGeometry, OnAxisPointHasDisparityFocalBaselineOverDepthMinusDoffs) {
   const StereoRig r = rig(1200.0, 100.0, 25.0);
   for (double z : {500.0, 1000.0, 3000.0}) {
-    const Point3 p{0.0, 0.0, z};
+    const Eigen::Vector3d p(0.0, 0.0, z);
     double ul = 0, vl = 0, ur = 0, vr = 0;
-    ASSERT_TRUE(r.left().project(p, ul, vl));
-    ASSERT_TRUE(r.right().project(p, ur, vr));
+    ASSERT_TRUE(project_left(r, p, ul, vl));
+    ASSERT_TRUE(project_right(r, p, ur, vr));
     EXPECT_NEAR(ul - ur, 1200.0 * 100.0 / z - 25.0, 1e-9);
-    EXPECT_NEAR(r.disparity_at(z), 1200.0 * 100.0 / z - 25.0, 1e-12);
+    EXPECT_NEAR(r.disparity(z), 1200.0 * 100.0 / z - 25.0, 1e-12);
     EXPECT_DOUBLE_EQ(vl, vr);  // rectified: same row
     // Middlebury's triangulation takes it back: Z = f B / (d + doffs).
-    EXPECT_NEAR(1200.0 * 100.0 / (r.disparity_at(z) + 25.0), z, 1e-9);
+    EXPECT_NEAR(1200.0 * 100.0 / (r.disparity(z) + 25.0), z, 1e-9);
   }
   // Off-axis points too: disparity depends on depth only.
   double ul = 0, vl = 0, ur = 0, vr = 0;
-  ASSERT_TRUE(r.left().project({-300.0, 77.0, 800.0}, ul, vl));
-  ASSERT_TRUE(r.right().project({-300.0, 77.0, 800.0}, ur, vr));
-  EXPECT_NEAR(ul - ur, r.disparity_at(800.0), 1e-9);
+  ASSERT_TRUE(project_left(r, {-300.0, 77.0, 800.0}, ul, vl));
+  ASSERT_TRUE(project_right(r, {-300.0, 77.0, 800.0}, ur, vr));
+  EXPECT_NEAR(ul - ur, r.disparity(800.0), 1e-9);
 }
 
 TEST(SensorGeometry, DepthStepIsDepthSquaredTimesStepOverFocalBaseline) {
@@ -67,17 +70,15 @@ TEST(SensorGeometry, FittingFocalMakesTheNearFaceSpanTheImage) {
   // The centring doffs of a volume whose near face decides: f B / Z_near.
   EXPECT_NEAR(centring_doffs(7000.0, 500.0, v), 7000.0 * 500.0 / 1050.0, 1e-9);
   // With that focal length and doffs the corners land on the image borders.
-  StereoRig r;
-  r.focal_px = 7000.0;
-  r.doffs_px = centring_doffs(7000.0, 500.0, v);
+  const StereoRig r = make_centred_stereo_rig(500.0, 4000, 3000, 7000.0, centring_doffs(7000.0, 500.0, v), Projector{});
   double u = 0, vv = 0;
-  ASSERT_TRUE(r.left().project(v.corner(0), u, vv));  // near top left
+  ASSERT_TRUE(project_left(r, v.corner(0), u, vv));  // near top left
   EXPECT_NEAR(u, 0.0, 1e-6);
-  ASSERT_TRUE(r.left().project(v.corner(1), u, vv));  // near top right
+  ASSERT_TRUE(project_left(r, v.corner(1), u, vv));  // near top right
   EXPECT_NEAR(u, 4000.0, 1e-6);
   for (int c = 0; c < 8; ++c) {
-    EXPECT_TRUE(r.left().sees(v.corner(c))) << c;
-    EXPECT_TRUE(r.right().sees(v.corner(c))) << c;
+    EXPECT_TRUE(left_sees(r, v.corner(c))) << c;
+    EXPECT_TRUE(right_sees(r, v.corner(c))) << c;
   }
   // A tall volume is limited by the height instead.
   WorkingVolume tall;
@@ -87,8 +88,8 @@ TEST(SensorGeometry, FittingFocalMakesTheNearFaceSpanTheImage) {
 
 TEST(SensorGeometry, PointsBehindTheSensorAreNotSeen) {
   const StereoRig r = rig(1000.0, 100.0, 0.0);
-  EXPECT_FALSE(r.left().sees({0.0, 0.0, -100.0}));
-  EXPECT_FALSE(r.left().sees({0.0, 0.0, 0.0}));
+  EXPECT_FALSE(left_sees(r, {0.0, 0.0, -100.0}));
+  EXPECT_FALSE(left_sees(r, {0.0, 0.0, 0.0}));
   EXPECT_FALSE(r.projector.sees({0.0, 0.0, -100.0}));
   EXPECT_TRUE(r.projector.sees({0.0, 0.0, 100.0}));
   // The projector's 35 degree frustum: tan(17.5 deg) = 0.3153.
@@ -100,7 +101,7 @@ TEST(SensorGeometry, PointsBehindTheSensorAreNotSeen) {
 TEST(SensorPlan, PaperCameraFigures) {
   const SensorPlan plan = make_sensor_plan(SensorPlanInputs{});
   EXPECT_TRUE(plan.focal_fitted);
-  EXPECT_NEAR(plan.rig.focal_px, 7000.0, 1e-6);
+  EXPECT_NEAR(plan.rig.focal(), 7000.0, 1e-6);
   EXPECT_NEAR(plan.coverage.volume.all, 100.0, 1e-12);
   const double fb = 7000.0 * 500.0;
   EXPECT_NEAR(plan.dz_near_mm, 1050.0 * 1050.0 / 16.0 / fb, 1e-12);

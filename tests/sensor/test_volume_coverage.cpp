@@ -13,15 +13,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 // f = 1000 px on 1000 x 800 images, baseline 100 mm, a 90 x 90 degree projector: at 1 m
 // each camera sees a 1000 x 800 mm window, so a 200 mm box there is well inside.
-StereoRig wide_rig() {
-  StereoRig r;
-  r.baseline_mm = 100.0;
-  r.focal_px = 1000.0;
-  r.width = 1000;
-  r.height = 800;
-  r.doffs_px = 0.0;
-  r.projector = {0.0, 90.0, 90.0};
-  return r;
+StereoRig wide_rig(double doffs = 0.0, double baseline = 100.0, const Projector& projector = {0.0, 90.0, 90.0}) {
+  return make_centred_stereo_rig(baseline, 1000, 800, 1000.0, doffs, projector);
 }
 
 WorkingVolume box(double width, double height, double depth, double distance) {
@@ -48,8 +41,7 @@ TEST(SensorCoverage, VolumeHalfOutsideOneCameraIsAboutHalfCoveredByIt) {
   // cx_left = 950: the left camera's right image border is the plane x = -50 + z / 20,
   // which crosses x = 0 at the volume's centroid (z = 1000); the box is thin in z, so
   // that plane halves it. The right camera mirrors it (x >= 0).
-  StereoRig r = wide_rig();
-  r.doffs_px = -900.0;  // cx_left = 500 + 450, cx_right = 500 - 450
+  const StereoRig r = wide_rig(-900.0);  // cx_left = 500 + 450, cx_right = 500 - 450
   const VolumeCoverage c = measure_coverage(r, box(200, 200, 40, 1000), 5.0);
   EXPECT_NEAR(c.volume.left, 50.0, 1.0);
   EXPECT_NEAR(c.volume.right, 50.0, 1.0);
@@ -66,15 +58,13 @@ TEST(SensorCoverage, VolumeHalfOutsideTheProjectorIsHalfCovered) {
   // Cameras at x = +-200 (they still see the whole box) and a projector at x = 100 whose
   // frustum edge x = 100 - z / 10 crosses x = 0 at 1 m and whose other edge
   // (x = 100 + z / 10) lies beyond the box: it lights x >= 0 only.
-  StereoRig r = wide_rig();
-  r.baseline_mm = 400.0;
-  r.projector = {100.0, 2.0 * std::atan(0.1) * 180.0 / kPi, 90.0};
+  const StereoRig r = wide_rig(0.0, 400.0, {100.0, 2.0 * std::atan(0.1) * 180.0 / kPi, 90.0});
   const VolumeCoverage c = measure_coverage(r, box(200, 200, 40, 1000), 5.0);
   EXPECT_DOUBLE_EQ(c.volume.cameras, 100.0);
   EXPECT_NEAR(c.volume.projector, 50.0, 1.0);
   EXPECT_NEAR(c.volume.all, 50.0, 1.0);
   EXPECT_TRUE(c.any_unseen);
-  EXPECT_LT(c.unseen_max.x, 1.0);  // the unseen samples are on the x < 0 side
+  EXPECT_LT(c.unseen_max.x(), 1.0);  // the unseen samples are on the x < 0 side
   EXPECT_DOUBLE_EQ(c.faces[2].all, 0.0);    // left face: dark
   EXPECT_DOUBLE_EQ(c.faces[3].all, 100.0);  // right face: lit
 }
@@ -83,10 +73,7 @@ TEST(SensorCoverage, FrustumsWideningWithDepthLoseTheNearPlaneFirst) {
   // f = 4000 px on 2000 px: each camera sees x within +-z / 4 of its centre, so both see
   // |x| <= z / 4 - 50: 150 mm at the near plane (800) and 250 mm at the far one (1200).
   // The 400 mm wide box is cut at its near end and whole at its far end.
-  StereoRig r = wide_rig();
-  r.focal_px = 4000.0;
-  r.width = 2000;
-  r.height = 4000;
+  const StereoRig r = make_centred_stereo_rig(100.0, 2000, 4000, 4000.0, 0.0, {0.0, 90.0, 90.0});
   const VolumeCoverage c = measure_coverage(r, box(400, 100, 400, 1000), 10.0, 4);
   ASSERT_EQ(c.slabs.size(), 4u);
   for (size_t s = 1; s < c.slabs.size(); ++s) EXPECT_GE(c.slabs[s].all, c.slabs[s - 1].all);
