@@ -11,12 +11,12 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
-#include "host/cli/pose_scoring.h"
 #include "host/cli/synth_settings_options.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/bop_reader.h"
 #include "host/dataset/dataset_files.h"
 #include "host/eval/pose_report.h"
+#include "host/eval/pose_scoring.h"
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
 
