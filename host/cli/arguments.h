@@ -36,6 +36,17 @@ double take_number_option(std::vector<std::string>& args, const std::string& nam
 std::int64_t parse_whole_number(const std::string& option, const std::string& text,
                                 std::int64_t lo, std::int64_t hi);
 
+// "option --name": the subject of an option's InputError.
+std::string option_subject(const std::string& name);
+
+// Whether a float option may be infinite: only where infinity has a documented meaning
+// ("inf = off"); NaN never is a value.
+enum class Infinity { kRejected, kMeaningful };
+
+// The value of option `name` (without dashes) read from the whole of `text`; InputError
+// naming the option for anything else, and for an infinity `infinity` rejects.
+float parse_float(const std::string& name, const std::string& text, Infinity infinity = Infinity::kRejected);
+
 // Removes "--name" from args and returns whether it was there.
 bool take_flag(std::vector<std::string>& args, const std::string& name);
 

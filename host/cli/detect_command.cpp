@@ -17,12 +17,12 @@
 #include "host/cli/commands.h"
 #include "host/cli/detection_outputs.h"
 #include "host/cli/image_inputs.h"
-#include "host/cli/progress_bar.h"
 #include "host/detect/detection_drawing.h"
 #include "host/detect/detector_model.h"
 #include "host/detect/ssd_detector.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/progress_bar.h"
 
 namespace flexsight {
 namespace {

@@ -6,6 +6,7 @@
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/io/input_error.h"
+#include "host/runtime/opencl_device_rows.h"
 
 namespace flexsight {
 namespace {

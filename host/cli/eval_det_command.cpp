@@ -1,12 +1,8 @@
 // flexsight eval-det: scores detections against the ground truth of a BOP or COCO data
 // set (VOC and COCO average precision) and writes a Markdown and a JSON report, the
 // precision-recall curves and a montage of the first images.
-#include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <opencv2/imgproc.hpp>
-#include <optional>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -15,7 +11,6 @@
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
-#include "host/cli/progress_bar.h"
 #include "host/dataset/dataset_files.h"
 #include "host/detect/detector_model.h"
 #include "host/detect/ssd_detector.h"
@@ -24,6 +19,7 @@
 #include "host/eval/detection_pictures.h"
 #include "host/eval/detection_report.h"
 #include "host/eval/detection_results_reader.h"
+#include "host/eval/detector_evaluation.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/report_text.h"
@@ -148,89 +144,16 @@ EvalDetOptions parse_options(std::vector<std::string> args) {
   return options;
 }
 
-bool is_truth_category(const DetectionGroundTruth& truth, int category_id) {
-  for (const DetectionCategory& category : truth.categories()) {
-    if (category.id == category_id) return true;
-  }
-  return false;
-}
-
-// The detector of `model_path` on every image of `truth`. A model that knows a category
-// the data set lacks was trained for other parts: refused before any image runs.
-DetectionResults run_detector(const EvalDetOptions& options, const std::string& model_path,
-                              const DetectionGroundTruth& truth) {
-  if (options.threads > 0) cv::setNumThreads(options.threads);
-  ComputeBackend backend(options.backend);
-  SsdDetector detector(model_path, backend, options.detector);
-  for (const DetectorLabel& label : detector.labels()) {
-    if (!is_truth_category(truth, label.category_id)) {
-      throw InputError(model_path, "detects category " + std::to_string(label.category_id) + " (" +
-                                       label.name + "), which " + truth.source() +
-                                       " does not have: a model for other parts");
-    }
-  }
-  std::cerr << "eval-det: " << truth.images().size() << " images with " << model_path << "; "
-            << detector.planned() << "\n";
-  DetectionResults results;
-  results.source = model_path;
-  results.format = "model run by eval-det";
-  std::optional<ProgressBar> progress;
-  if (!options.quiet) progress.emplace(static_cast<std::int64_t>(truth.images().size()), "images");
-  const auto start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < truth.images().size(); ++i) {
-    cv::Mat bgr;
-    cv::cvtColor(truth.load_rgb(i), bgr, cv::COLOR_RGB2BGR);
-    std::vector<DetectedBox> boxes;
-    for (const ObjectDetection& found : detector.detect(bgr)) {
-      DetectedBox box;
-      box.category_id = found.category_id;
-      box.bbox = {found.box[0], found.box[1], found.box[2] - found.box[0], found.box[3] - found.box[1]};
-      box.score = found.score;
-      boxes.push_back(box);
-    }
-    results.per_image.push_back(std::move(boxes));
-    if (progress) progress->advance();
-  }
-  if (progress) progress->finish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cerr << "eval-det: detector at " << (seconds > 0 ? truth.images().size() / seconds : 0.0)
-            << " images/s (reading included)\n";
-  return results;
-}
-
 // The detections to score, one list per image of `truth`: a results file, or the
 // detector run on each image.
 DetectionResults collect_detections(const EvalDetOptions& options, const DetectionGroundTruth& truth) {
   if (!options.results.empty()) return read_detection_results(options.results, truth);
-  return run_detector(options, resolve_detector_model_path(options.model), truth);
-}
-
-std::string caption(const DetectionImage& image) {
-  if (image.coco_id < 0) {
-    return "scene " + std::to_string(image.scene_id) + ", im " + std::to_string(image.im_id);
-  }
-  std::string text = "image " + std::to_string(image.coco_id);
-  if (image.scene_id >= 0 && image.im_id >= 0) {
-    text += " (scene " + std::to_string(image.scene_id) + ", im " + std::to_string(image.im_id) + ")";
-  }
-  return text;
-}
-
-// The first `count` images with their boxes; reads their pictures, so a missing image
-// file fails here, before anything is written.
-std::vector<MontageImage> montage_images(const DetectionGroundTruth& truth,
-                                         const DetectionResults& detections, int count) {
-  std::vector<MontageImage> images;
-  for (std::size_t i = 0; i < truth.images().size() && static_cast<int>(i) < count; ++i) {
-    MontageImage image;
-    image.rgb = truth.load_rgb(i);
-    image.caption = caption(truth.images()[i]);
-    image.truth = truth.images()[i].truth;
-    image.detections = detections.per_image[i];
-    images.push_back(std::move(image));
-  }
-  return images;
+  DetectorRunOptions run;
+  run.detector = options.detector;
+  run.backend = options.backend;
+  run.threads = options.threads;
+  run.quiet = options.quiet;
+  return run_detector(resolve_detector_model_path(options.model), truth, run);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // flexsight eval-pick: `pick` on every bin of a `synth bin` folder, scored against the
-// bins' ground truth (host/cli/pick_scoring.h, pick_report.h; docs/pick.md).
+// bins' ground truth (host/eval/pick_evaluation.h; docs/pick.md).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -8,14 +8,14 @@
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
 #include "host/cli/pick_options.h"
-#include "host/cli/pick_outputs.h"
-#include "host/cli/pick_report.h"
 #include "host/dataset/dataset_files.h"
+#include "host/eval/pick_evaluation.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
-#include "host/stereo/pipeline_rules.h"
+#include "host/pick/pick_outputs.h"
+#include "host/sim/bin_folder.h"
 
 namespace flexsight {
 namespace {
@@ -47,26 +47,20 @@ void print_help() {
             << pick_options_help();
 }
 
-struct BinFiles {
-  std::string dir, left, right, left_passive, right_passive, calib;
-};
+void print_bin_score(const BinPickScore& score) {
+  std::cerr << "  " << score.posed_visib50 << " of " << score.targets_visib50 << " parts >= 50 % visible posed; top pick "
+            << (score.top1_correct ? "right" : "wrong") << "; " << seconds_text(score.seconds.total()) << "\n";
+}
 
-BinFiles bin_files(const fs::path& dir, bool passive_stereo) {
-  BinFiles files{dir.string(), (dir / "im0.png").string(), (dir / "im1.png").string(),
-                 (dir / "im0_passive.png").string(), (dir / "im1_passive.png").string(),
-                 (dir / "calib.txt").string()};
-  std::vector<std::string> required = {files.left, files.right, files.calib, (dir / "disp0GT.pfm").string(),
-                                       (dir / "mask0nocc.png").string(), (dir / "scene_gt.json").string(),
-                                       (dir / "scene_gt_info.json").string()};
-  if (passive_stereo) {
-    required.push_back(files.left_passive);
-    required.push_back(files.right_passive);
-  }
-  for (const std::string& file : required) {
-    if (!fs::is_regular_file(file)) throw InputError(file, "is missing: not a synth-bin folder (or pass --pattern-only)");
-  }
-  if (!fs::is_regular_file(files.left_passive)) files.left_passive.clear();
-  return files;
+// STAGING/BIN.json and STAGING/BIN.png: `stem` is STAGING/BIN.
+void write_bin_outputs(const fs::path& stem, const BinPickRun& run, const BinFiles& files, const PickSettings& settings,
+                       const PickSession& session) {
+  dataset_files::write_text(stem.string() + ".json",
+                            pick_json(run.result, {files.left, files.right, files.calib, settings.model,
+                                                   settings.templates, settings.cad, files.left_passive}));
+  cv::Mat picture;
+  cv::cvtColor(pick_picture(run.left_view, run.result, session.models()), picture, cv::COLOR_BGR2RGB);
+  write_image(stem.string() + ".png", picture);
 }
 
 }  // namespace
@@ -88,11 +82,7 @@ int run_eval_pick_command(std::vector<std::string> args) {
   if (models_info.empty()) models_info = default_models_info_beside(settings.cad);
 
   // The bins: BINS_DIR's subfolders that hold a scene_gt.json, by name.
-  std::vector<fs::path> bin_dirs;
-  for (const auto& entry : fs::directory_iterator(bins_dir)) {
-    if (entry.is_directory() && fs::is_regular_file(entry.path() / "scene_gt.json")) bin_dirs.push_back(entry.path());
-  }
-  std::sort(bin_dirs.begin(), bin_dirs.end());
+  std::vector<fs::path> bin_dirs = list_bin_dirs(bins_dir);
   if (!limit_text.empty()) {
     const auto limit = static_cast<std::size_t>(parse_whole_number("--limit", limit_text, 1, 1000000));
     if (bin_dirs.size() > limit) bin_dirs.resize(limit);
@@ -109,55 +99,23 @@ int run_eval_pick_command(std::vector<std::string> args) {
     read_stereo_camera(bins.back().calib);
     bin_paths.push_back(dir.string());
   }
-  std::set<int> obj_ids = bin_obj_ids(bin_paths);
-  std::map<int, std::string> source_of;
-  for (int id : obj_ids) source_of[id] = bins_dir.string();
-  PickPipeline pipeline(settings);
-  PickReport report;
-  report.bins_dir = bins_dir.string();
-  report.model = settings.model;
-  report.templates = settings.templates;
-  report.cad = settings.cad;
-  const SsdDetector& detector = pipeline.detector();
-  for (const DetectorLabel& label : detector.labels()) {
-    report.categories.push_back({label.category_id, label.name});
-    if (!source_of.count(label.category_id)) source_of[label.category_id] = settings.model;
-    obj_ids.insert(label.category_id);
-  }
-  const PoseScoringModels models = load_pose_scoring_models(obj_ids, settings.cad, models_info, source_of);
+  const std::set<int> obj_ids = bin_obj_ids(bin_paths);
+  PickSession session(settings);
+  PickReport report = pick_report_header(bins_dir.string(), settings, session);
+  const PoseScoringModels models =
+      load_pick_scoring_models(obj_ids, bins_dir.string(), settings, session, models_info);
   StagedFolder staged(out, overwrite, "--out");
 
   for (std::size_t i = 0; i < bins.size(); ++i) {
     const BinFiles& files = bins[i];
     const std::string name = bin_dirs[i].filename().string();
     std::cerr << "eval-pick: bin " << (i + 1) << " of " << bins.size() << " (" << name << ")\n";
-    const StereoPair pair = load_stereo_pair(files.left, files.right);
-    const StereoCamera rig = read_stereo_camera(files.calib).resized_to(pair.left.cols, pair.left.rows);
     settings.stereo.ndisp = pick_ndisp(options, files.calib);
-    pipeline.set_ndisp(settings.stereo.ndisp);
-    validate_inputs(pair.left, pair.right, settings.stereo);
-    const cv::Mat texture = files.left_passive.empty() ? cv::Mat() : load_rgb8(files.left_passive);
-    const PickResult result = pipeline.run(pair.left, pair.right, rig, texture);
-    if (report.stereo_path.empty()) report.stereo_path = result.stereo_path;
-    cv::Mat no_pattern;
-    if (passive_stereo) {
-      if (!settings.quiet) std::cerr << "  stereo without the pattern\n";
-      const StereoPair passive_pair = load_stereo_pair(files.left_passive, files.right_passive);
-      no_pattern = pipeline.disparity(passive_pair.left, passive_pair.right);
-    }
-    report.bins.push_back(
-        score_pick_on_bin(files.dir, result, no_pattern, models, settings.cad, models_info));
-    const BinPickScore& score = report.bins.back();
-    std::cerr << "  " << score.posed_visib50 << " of " << score.targets_visib50 << " parts >= 50 % visible posed; top pick "
-              << (score.top1_correct ? "right" : "wrong") << "; " << seconds_text(score.seconds.total()) << "\n";
-    const fs::path staging(staged.path());
-    dataset_files::write_text((staging / (name + ".json")).string(),
-                              pick_json(result, {files.left, files.right, files.calib, settings.model,
-                                                 settings.templates, settings.cad, files.left_passive}));
-    cv::Mat picture;
-    cv::cvtColor(pick_picture(texture.empty() ? pair.left : texture, result, pipeline.models()), picture,
-                 cv::COLOR_BGR2RGB);
-    write_image((staging / (name + ".png")).string(), picture);
+    const BinPickRun run = pick_and_score_bin(session, files, settings.stereo, passive_stereo, models, settings, models_info);
+    if (report.stereo_path.empty()) report.stereo_path = run.result.stereo_path;
+    report.bins.push_back(run.score);
+    print_bin_score(run.score);
+    write_bin_outputs(fs::path(staged.path()) / name, run, files, settings, session);
   }
   summarize(report);
   const fs::path dir(staged.path());

@@ -1,5 +1,5 @@
 // flexsight pick: a rectified stereo pair in, the parts in the bin out, ranked for the
-// robot (host/cli/pick_pipeline.h; docs/pick.md).
+// robot (host/pick/pick_session.h; docs/pick.md).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -11,15 +11,15 @@
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/pick_options.h"
-#include "host/cli/pick_outputs.h"
-#include "host/cli/pick_pipeline.h"
-#include "host/cli/pose_inputs.h"
 #include "host/detect/detector_model.h"
 #include "host/io/atomic_file.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/middeval3_files.h"
+#include "host/pick/pick_outputs.h"
+#include "host/pick/pick_session.h"
+#include "host/pose/pose_models.h"
 #include "host/stereo/pipeline_rules.h"
 
 namespace flexsight {
@@ -127,10 +127,10 @@ int run_pick_command(std::vector<std::string> args) {
   }
   settings.stereo.ndisp = pick_ndisp(options, inputs.calib);
   validate_inputs(pair.left, pair.right, settings.stereo);
-  PickPipeline pipeline(settings);
+  PickSession session(settings);
   if (!settings.quiet) std::cerr << "pick: " << pair.left.cols << "x" << pair.left.rows << ", ndisp " << settings.stereo.ndisp << "\n";
 
-  const PickResult result = pipeline.run(pair.left, pair.right, rig, passive);
+  const PickResult result = session.pick(pair.left, pair.right, rig, passive);
   if (!output.empty()) {
     const std::string json =
         pick_json(result, {inputs.left, inputs.right, inputs.calib, settings.model, settings.templates, settings.cad,
@@ -143,7 +143,7 @@ int run_pick_command(std::vector<std::string> args) {
   }
   if (!png.empty()) write_image(png, [&] {
     cv::Mat rgb;
-    cv::cvtColor(pick_picture(passive.empty() ? pair.left : passive, result, pipeline.models()), rgb, cv::COLOR_BGR2RGB);
+    cv::cvtColor(pick_picture(passive.empty() ? pair.left : passive, result, session.models()), rgb, cv::COLOR_BGR2RGB);
     return rgb;
   }());
   print_table(result);

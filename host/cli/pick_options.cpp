@@ -5,10 +5,10 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
-#include "host/cli/pose_inputs.h"
 #include "host/detect/detector_model.h"
 #include "host/io/calibration.h"
 #include "host/io/input_error.h"
+#include "host/pose/pose_models.h"
 
 namespace flexsight {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "host/cli/pick_pipeline.h"
+#include "host/pick/pick_session.h"
 
 namespace flexsight {
 

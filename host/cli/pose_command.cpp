@@ -15,14 +15,14 @@
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
 #include "host/cli/pose_image_form.h"
-#include "host/cli/pose_inputs.h"
 #include "host/cli/pose_outputs.h"
-#include "host/cli/pose_scoring.h"
-#include "host/cli/progress_bar.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/bop_reader.h"
+#include "host/eval/pose_scoring.h"
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
+#include "host/pose/dataset_posing.h"
+#include "host/pose/pose_models.h"
 
 namespace flexsight {
 namespace {
@@ -68,10 +68,6 @@ PoseRefinement parse_refinement(const std::string& text) {
 }
 
 
-bool to_pose(const PartAnnotation& part, double min_visib) {
-  return part.visib_fract >= min_visib && !part.bbox_visib.empty();
-}
-
 int run_dataset_form(const std::string& dataset, std::vector<std::string>& args) {
   if (!take_flag(args, "--gt-boxes")) {
     throw InputError("pose " + dataset, "a data set form needs --gt-boxes (pose its ground-truth boxes)");
@@ -99,14 +95,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const BopReader reader(dataset);
   const PoseModels models(templates, cad);
   const std::size_t image_count = limit < 0 ? reader.size() : std::min<std::size_t>(reader.size(), limit);
-  std::size_t boxes = 0;
-  for (std::size_t i = 0; i < image_count; ++i) {
-    for (const PartAnnotation& part : reader.record(i).parts) {
-      if (!to_pose(part, min_visib)) continue;
-      models.model(part.obj_id, reader.scene_dir(i) + "/scene_gt.json");
-      ++boxes;
-    }
-  }
+  const std::size_t boxes = count_boxes_to_pose(reader, image_count, models, min_visib);
   if (boxes == 0) throw InputError(dataset, "has no ground-truth box at least " + std::to_string(min_visib) + " visible");
   // The scoring's inputs (every ground-truth part's mesh and models_info entry) are
   // checked before any part is posed.
@@ -117,59 +106,8 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const PoseScoringModels scoring_models = load_pose_scoring_models(truth_ids, cad, models_info, {});
   StagedFolder staged(out, overwrite, "--out");
 
-  std::vector<std::vector<PoseEstimateRecord>> per_image(image_count);
-  std::vector<std::vector<PoseStageTimes>> times(image_count);
-  ProgressBar progress(static_cast<std::int64_t>(boxes), "parts");
-  std::exception_ptr failure;
-  const auto posing_start = std::chrono::steady_clock::now();
-#pragma omp parallel num_threads(threads)
-  {
-    PoseEstimator estimator(params);
-#pragma omp for schedule(dynamic)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(image_count); ++i) {
-      try {
-        const AnnotatedImage image = reader.load(i);
-        if (image.depth.empty()) throw InputError(reader.scene_dir(i), "has no depth/ image for image " + std::to_string(image.im_id));
-        cv::Mat bgr;
-        cv::cvtColor(image.rgb, bgr, cv::COLOR_RGB2BGR);
-        const PinholeCamera camera = camera_of(image);
-        const auto start = std::chrono::steady_clock::now();
-        for (const PartAnnotation& part : image.parts) {
-          if (!to_pose(part, min_visib)) continue;
-          const cv::Rect box(part.bbox_visib.x, part.bbox_visib.y, part.bbox_visib.width, part.bbox_visib.height);
-          const PoseEstimate estimate = estimator.estimate(models.model(part.obj_id, "data set"), bgr, image.depth, camera, box);
-          PoseEstimateRecord record;
-          record.scene_id = image.scene_id;
-          record.im_id = image.im_id;
-          record.obj_id = part.obj_id;
-          record.score = estimate.score;
-          record.R = estimate.pose.R;
-          record.t = estimate.pose.t;
-          per_image[i].push_back(record);
-          times[i].push_back(estimate.times);
-          progress.advance();
-        }
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        for (auto& record : per_image[i]) record.time_s = seconds;
-      } catch (...) {
-#pragma omp critical
-        if (!failure) failure = std::current_exception();
-      }
-    }
-  }
-  progress.finish();
-  if (failure) std::rethrow_exception(failure);
-  PoseRunTiming timing;
-  timing.threads = threads;
-  timing.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - posing_start).count();
-
-  std::vector<PoseEstimateRecord> records;
-  std::vector<PoseStageTimes> all_times;
-  for (std::size_t i = 0; i < image_count; ++i) {
-    records.insert(records.end(), per_image[i].begin(), per_image[i].end());
-    all_times.insert(all_times.end(), times[i].begin(), times[i].end());
-  }
-  timing.stages = all_times;
+  const DatasetPoses poses = pose_ground_truth_boxes(reader, image_count, boxes, models, params, min_visib, threads);
+  const std::vector<PoseEstimateRecord>& records = poses.records;
   PoseScoringInput scoring;
   scoring.reader = &reader;
   scoring.dataset = dataset;
@@ -180,7 +118,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   scoring.models_info = models_info;
   scoring.min_visib = min_visib;
   const PoseReport report = score_pose_estimates(scoring, scoring_models);
-  write_pose_dataset_outputs(staged.path(), reader, image_count, records, timing, report, models);
+  write_pose_dataset_outputs(staged.path(), reader, image_count, records, poses.timing, report, models);
   staged.commit();
   std::cout << std::fixed << std::setprecision(3) << "pose: " << records.size() << " parts in " << image_count << " images: ADD(-S) recall "
             << report.total.add_recall() << ", AR " << report.total.ar() << " -> " << out << "\n";

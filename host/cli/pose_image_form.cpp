@@ -12,7 +12,6 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/pose_image_form.h"
-#include "host/cli/pose_inputs.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/dataset_files.h"
 #include "host/geometry/depth_from_disparity.h"
@@ -22,6 +21,7 @@
 #include "host/io/input_error.h"
 #include "host/io/pfm.h"
 #include "host/pose/pose_drawing.h"
+#include "host/pose/pose_models.h"
 
 namespace flexsight {
 namespace {
@@ -71,62 +71,48 @@ std::vector<BoxInput> read_boxes(const std::string& path, double min_score, cons
   return boxes;
 }
 
-}  // namespace
+struct PoseImageOptions {
+  std::string depth_path, disparity_path, calib_path, boxes_path, templates, output, csv, png;
+  double min_score = 0.3;
+};
 
-int run_pose_image_form(const std::string& image_path, std::vector<std::string>& args,
-                        const std::string& cad_dir, const PoseEstimatorParams& params) {
-  const std::string depth_path = take_option(args, "--depth");
-  const std::string disparity_path = take_option(args, "--disparity");
-  const std::string calib_path = take_option(args, "--calib");
-  const std::string boxes_path = take_option(args, "--boxes");
-  const std::string templates = take_option(args, "--templates");
-  const std::string output = take_option(args, "-o");
-  const std::string csv = take_option(args, "--csv");
-  const std::string png = take_option(args, "--png");
-  const double min_score = take_number_option(args, "--score", 0.3);
+PoseImageOptions parse_pose_image_options(std::vector<std::string>& args) {
+  PoseImageOptions o;
+  o.depth_path = take_option(args, "--depth");
+  o.disparity_path = take_option(args, "--disparity");
+  o.calib_path = take_option(args, "--calib");
+  o.boxes_path = take_option(args, "--boxes");
+  o.templates = take_option(args, "--templates");
+  o.output = take_option(args, "-o");
+  o.csv = take_option(args, "--csv");
+  o.png = take_option(args, "--png");
+  o.min_score = take_number_option(args, "--score", 0.3);
   reject_unknown_options(args);
   if (!args.empty()) throw InputError("pose", "unexpected argument '" + args[0] + "'");
-  if (templates.empty()) throw InputError("option --templates", "missing (make them with flexsight pose-templates CAD_DIR -o FILE)");
-  if (calib_path.empty()) throw InputError("option --calib", "missing: the camera (Middlebury, KITTI or OpenCV stereo calibration)");
-  if (boxes_path.empty()) throw InputError("option --boxes", "missing: the detections (flexsight detect -o DETS.json)");
-  if (depth_path.empty() == disparity_path.empty()) throw InputError("option --depth / --disparity", "give exactly one");
-  if (output.empty()) throw InputError("option -o", "missing: the poses JSON to write");
-  if (!(min_score >= 0.0 && min_score <= 1.0)) throw InputError("option --score", "must be in [0, 1]");
+  if (o.templates.empty()) throw InputError("option --templates", "missing (make them with flexsight pose-templates CAD_DIR -o FILE)");
+  if (o.calib_path.empty()) throw InputError("option --calib", "missing: the camera (Middlebury, KITTI or OpenCV stereo calibration)");
+  if (o.boxes_path.empty()) throw InputError("option --boxes", "missing: the detections (flexsight detect -o DETS.json)");
+  if (o.depth_path.empty() == o.disparity_path.empty()) throw InputError("option --depth / --disparity", "give exactly one");
+  if (o.output.empty()) throw InputError("option -o", "missing: the poses JSON to write");
+  if (!(o.min_score >= 0.0 && o.min_score <= 1.0)) throw InputError("option --score", "must be in [0, 1]");
+  return o;
+}
 
-  const cv::Mat rgb = load_rgb8(image_path);
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  const StereoCamera rig = read_stereo_camera(calib_path);
-  if (rig.width > 0 && (rig.width != bgr.cols || rig.height != bgr.rows)) {
-    throw InputError(calib_path, "is for " + std::to_string(rig.width) + " x " + std::to_string(rig.height) +
-                                     " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
-                                     std::to_string(bgr.rows));
-  }
-  const PinholeCamera camera = left_camera(rig, bgr.size());
-  const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
-  const cv::Mat input = read_pfm(depth_source);
-  if (input.size() != bgr.size()) {
-    throw InputError(depth_source, "is " + std::to_string(input.cols) + " x " + std::to_string(input.rows) +
-                                       ", the image " + std::to_string(bgr.cols) + " x " + std::to_string(bgr.rows));
-  }
-  cv::Mat depth(bgr.size(), CV_32FC1, cv::Scalar(0));
-  if (depth_path.empty()) {
-    depth = depth_from_disparity(input, rig, 1e-3, DepthRule::pose_input());
-  } else {
-    for (int y = 0; y < depth.rows; ++y) {
-      for (int x = 0; x < depth.cols; ++x) {
-        const float v = input.at<float>(y, x);
-        if (std::isfinite(v) && v > 0.0f) depth.at<float>(y, x) = v;
-      }
-    }
-  }
-  const PoseModels models(templates, cad_dir);
-  const std::vector<BoxInput> boxes = read_boxes(boxes_path, min_score, bgr.size(), models);
-
-  PoseEstimator estimator(params);
+struct PosedBoxes {
   std::vector<PoseEstimateRecord> records;
   std::vector<PosedPart> drawn;
-  dataset_files::Json poses = dataset_files::Json::array();
+  dataset_files::Json poses = dataset_files::Json::array();  // the poses JSON
+};
+
+// Each box posed in turn, a line per part on stdout.
+PosedBoxes pose_boxes(const std::vector<BoxInput>& boxes, const PoseModels& models, const std::string& boxes_path,
+                      const cv::Mat& bgr, const cv::Mat& depth, const PinholeCamera& camera,
+                      const PoseEstimatorParams& params) {
+  PosedBoxes posed;
+  std::vector<PoseEstimateRecord>& records = posed.records;
+  std::vector<PosedPart>& drawn = posed.drawn;
+  dataset_files::Json& poses = posed.poses;
+  PoseEstimator estimator(params);
   for (const BoxInput& b : boxes) {
     const PoseModel& model = models.model(b.obj_id, boxes_path);
     const PoseEstimate e = estimator.estimate(model, bgr, depth, camera, b.box);
@@ -159,6 +145,56 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
               << std::setprecision(1) << e.pose.t.x() << ", " << e.pose.t.y() << ", " << e.pose.t.z() << ") mm, "
               << e.times.total_ms() << " ms\n";
   }
+  return posed;
+}
+
+}  // namespace
+
+int run_pose_image_form(const std::string& image_path, std::vector<std::string>& args,
+                        const std::string& cad_dir, const PoseEstimatorParams& params) {
+  const PoseImageOptions options = parse_pose_image_options(args);
+  const std::string& depth_path = options.depth_path;
+  const std::string& disparity_path = options.disparity_path;
+  const std::string& calib_path = options.calib_path;
+  const std::string& boxes_path = options.boxes_path;
+  const std::string& output = options.output;
+  const std::string& templates = options.templates;
+  const std::string& csv = options.csv;
+  const std::string& png = options.png;
+  const double min_score = options.min_score;
+  const cv::Mat rgb = load_rgb8(image_path);
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  const StereoCamera rig = read_stereo_camera(calib_path);
+  if (rig.width > 0 && (rig.width != bgr.cols || rig.height != bgr.rows)) {
+    throw InputError(calib_path, "is for " + std::to_string(rig.width) + " x " + std::to_string(rig.height) +
+                                     " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
+                                     std::to_string(bgr.rows));
+  }
+  const PinholeCamera camera = left_camera(rig, bgr.size());
+  const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
+  const cv::Mat input = read_pfm(depth_source);
+  if (input.size() != bgr.size()) {
+    throw InputError(depth_source, "is " + std::to_string(input.cols) + " x " + std::to_string(input.rows) +
+                                       ", the image " + std::to_string(bgr.cols) + " x " + std::to_string(bgr.rows));
+  }
+  cv::Mat depth(bgr.size(), CV_32FC1, cv::Scalar(0));
+  if (depth_path.empty()) {
+    depth = depth_from_disparity(input, rig, 1e-3, DepthRule::pose_input());
+  } else {
+    for (int y = 0; y < depth.rows; ++y) {
+      for (int x = 0; x < depth.cols; ++x) {
+        const float v = input.at<float>(y, x);
+        if (std::isfinite(v) && v > 0.0f) depth.at<float>(y, x) = v;
+      }
+    }
+  }
+  const PoseModels models(templates, cad_dir);
+  const std::vector<BoxInput> boxes = read_boxes(boxes_path, min_score, bgr.size(), models);
+
+  const PosedBoxes posed = pose_boxes(boxes, models, boxes_path, bgr, depth, camera, params);
+  const std::vector<PoseEstimateRecord>& records = posed.records;
+  const dataset_files::Json& poses = posed.poses;
   write_atomically(output, [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << poses.dump(1) << "\n";
@@ -166,7 +202,7 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
   });
   if (!csv.empty()) write_bop_pose_results(csv, records);
   if (!png.empty()) {
-    draw_posed_parts(bgr, drawn, camera);
+    draw_posed_parts(bgr, posed.drawn, camera);
     write_atomically(png, [&](const std::string& tmp) {
       if (!cv::imwrite(tmp + ".png", bgr)) throw InputError(png, "cannot be written");
       std::filesystem::rename(tmp + ".png", tmp);

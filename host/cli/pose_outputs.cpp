@@ -17,12 +17,6 @@ namespace {
 
 constexpr int kPictureImages = 12;
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
 // The first images with the ground truth's outlines (green) and the estimates' (orange),
 // tiled 4 wide at a third of their size... or full size when there are few.
 void write_picture(const std::string& path, const BopReader& reader, std::size_t image_count,
@@ -68,20 +62,6 @@ void write_picture(const std::string& path, const BopReader& reader, std::size_t
 }
 
 }  // namespace
-
-std::vector<std::pair<std::string, double>> median_stage_times(const std::vector<PoseStageTimes>& times) {
-  std::vector<double> edges, search, refine, icp, score, total;
-  for (const auto& t : times) {
-    edges.push_back(t.edges_ms);
-    search.push_back(t.search_ms);
-    refine.push_back(t.refine_ms);
-    icp.push_back(t.icp_ms);
-    score.push_back(t.score_ms);
-    total.push_back(t.total_ms());
-  }
-  return {{"edges", median(edges)}, {"search", median(search)}, {"refine", median(refine)},
-          {"icp", median(icp)},     {"score", median(score)},   {"total", median(total)}};
-}
 
 void write_pose_dataset_outputs(const std::string& folder, const BopReader& reader, std::size_t image_count,
                                 const std::vector<PoseEstimateRecord>& records, const PoseRunTiming& timing,

@@ -4,21 +4,14 @@
 #include <string>
 #include <vector>
 
-#include "host/cli/pose_inputs.h"
 #include "host/dataset/bop_pose_results.h"
 #include "host/dataset/bop_reader.h"
 #include "host/eval/pose_report.h"
+#include "host/pose/dataset_posing.h"
 #include "host/pose/pose_estimator.h"
+#include "host/pose/pose_models.h"
 
 namespace flexsight {
-
-// How long the posing took: per part and stage, and the wall time of all parts with
-// `threads` parts posed at once (the throughput a bin of parts sees).
-struct PoseRunTiming {
-  std::vector<PoseStageTimes> stages;
-  double wall_s = 0.0;
-  int threads = 1;
-};
 
 // poses.csv, poses.jpg (the first images, outlines of the truth green and of the
 // estimates orange), report.json (the scores of flexsight eval-pose plus the times) and
@@ -26,8 +19,5 @@ struct PoseRunTiming {
 void write_pose_dataset_outputs(const std::string& folder, const BopReader& reader, std::size_t image_count,
                                 const std::vector<PoseEstimateRecord>& records, const PoseRunTiming& timing,
                                 const PoseReport& report, const PoseModels& models);
-
-// Median milliseconds per stage over `times`: edges, search, refine, icp, score, total.
-std::vector<std::pair<std::string, double>> median_stage_times(const std::vector<PoseStageTimes>& times);
 
 }  // namespace flexsight

@@ -6,8 +6,8 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
-#include "host/cli/progress_bar.h"
 #include "host/io/input_error.h"
+#include "host/io/progress_bar.h"
 #include "host/pose/template_file.h"
 #include "host/synth/part_library.h"
 

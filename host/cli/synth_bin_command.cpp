@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/arguments.h"
-#include "host/cli/progress_bar.h"
 #include "host/cli/synth_commands.h"
 #include "host/cli/synth_settings_options.h"
 #include "host/dataset/detection_data.h"
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
+#include "host/io/progress_bar.h"
 #include "host/io/staged_folder.h"
 #include "host/sim/bin_scene.h"
 #include "host/sim/bin_writer.h"
@@ -85,16 +85,33 @@ std::string bin_name(std::int64_t index, std::int64_t count) {
   return "bin" + std::string(digits - std::min(digits, number.size()), '0') + number;
 }
 
-}  // namespace
-
-int run_synth_bin_command(std::vector<std::string> args) {
-  if (const auto code = usage_exit_code(args, print_help)) return *code;
+struct SynthBinOptions {
   BinSimSettings settings;
-  const std::string output = take_option(args, "-o");
-  const bool overwrite = take_flag(args, "--overwrite");
+  std::string output;
+  bool overwrite = false;
+  std::int64_t count = 0;
+  std::uint32_t seed = 1;
+  std::string cad;  // empty: default_cad_dir()
+};
+
+// --parts MIN..MAX into the settings.
+void set_parts_range(const std::string& parts_text, BinSimSettings& settings) {
+  const std::size_t dots = parts_text.find("..");
+  if (dots == std::string::npos) {
+    throw InputError("option --parts", "expected MIN..MAX (e.g. 10..20), got '" + parts_text + "'");
+  }
+  settings.min_parts = int(parse_whole_number("--parts", parts_text.substr(0, dots), 1, 200));
+  settings.max_parts = int(parse_whole_number("--parts", parts_text.substr(dots + 2), 1, 200));
+}
+
+SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
+  SynthBinOptions options;
+  BinSimSettings& settings = options.settings;
+  options.output = take_option(args, "-o");
+  options.overwrite = take_flag(args, "--overwrite");
   const std::string count_text = take_option(args, "--count");
   const std::string seed_text = take_option(args, "--seed");
-  const std::string cad_option = take_option(args, "--cad");
+  options.cad = take_option(args, "--cad");
   const std::string parts_text = take_option(args, "--parts");
   const std::string pattern_seed_text = take_option(args, "--pattern-seed");
   const std::string threads_text = take_option(args, "--threads");
@@ -108,28 +125,25 @@ int run_synth_bin_command(std::vector<std::string> args) {
   reject_unknown_options(args);
   if (!args.empty()) throw InputError("synth bin", "unexpected argument '" + args[0] + "'");
 
-  if (output.empty()) throw InputError("option -o", "an output folder is required");
+  if (options.output.empty()) throw InputError("option -o", "an output folder is required");
   if (count_text.empty()) throw InputError("option --count", "the number of bins is required");
-  const std::int64_t count = parse_whole_number("--count", count_text, 1, 1000000);
-  const auto seed = static_cast<std::uint32_t>(
+  options.count = parse_whole_number("--count", count_text, 1, 1000000);
+  options.seed = static_cast<std::uint32_t>(
       seed_text.empty() ? 1 : parse_whole_number("--seed", seed_text, 0, 4294967295LL));
   if (!pattern_seed_text.empty()) {
     settings.projector.pattern_seed =
         static_cast<std::uint32_t>(parse_whole_number("--pattern-seed", pattern_seed_text, 0, 4294967295LL));
   }
   if (!threads_text.empty()) settings.threads = int(parse_whole_number("--threads", threads_text, 0, 4096));
-  if (!parts_text.empty()) {
-    const std::size_t dots = parts_text.find("..");
-    if (dots == std::string::npos) {
-      throw InputError("option --parts", "expected MIN..MAX (e.g. 10..20), got '" + parts_text + "'");
-    }
-    settings.min_parts = int(parse_whole_number("--parts", parts_text.substr(0, dots), 1, 200));
-    settings.max_parts = int(parse_whole_number("--parts", parts_text.substr(dots + 2), 1, 200));
-  }
+  if (!parts_text.empty()) set_parts_range(parts_text, settings);
   settings.projector.power = float(power);
   settings.check();
+  return options;
+}
 
-  // Where the bins go, checked before any work: nothing is written on bad input.
+// Where the bins go, checked before any work: nothing is written on bad input.
+void check_bin_folders(const SynthBinOptions& options) {
+  const std::string& output = options.output;
   const fs::path root(output);
   std::error_code ec;
   if (fs::exists(root, ec) && !fs::is_directory(root, ec)) {
@@ -139,45 +153,61 @@ int run_synth_bin_command(std::vector<std::string> args) {
   if (!fs::exists(root, ec) && !fs::is_directory(parent.empty() ? fs::path(".") : parent, ec)) {
     throw InputError("option -o", "the parent folder of " + output + " does not exist");
   }
-  for (std::int64_t i = 0; i < count; ++i) {
-    const fs::path bin = root / bin_name(i, count);
-    if (fs::exists(bin, ec) && !overwrite &&
+  for (std::int64_t i = 0; i < options.count; ++i) {
+    const fs::path bin = root / bin_name(i, options.count);
+    if (fs::exists(bin, ec) && !options.overwrite &&
         !(fs::is_directory(bin, ec) && fs::is_empty(bin, ec))) {
       throw InputError("option -o", bin.string() + " exists and is not empty (use --overwrite)");
     }
   }
-  const std::string cad = cad_option.empty() ? default_cad_dir() : cad_option;
-  const PartLibrary parts = PartLibrary::load_folder(cad);
-  const BinSimulator simulator(settings, parts);
+}
 
+// What made the bin and how the physics went (no timings: same seed, same bytes).
+void write_sim_info(const std::string& folder, const SynthBinOptions& options, const std::string& cad,
+                    std::int64_t index, const BinViews& views) {
+  const BinSimSettings& settings = options.settings;
+  BinSimSettings named = settings;  // a copy: bin_setting_options takes settings it may write
+  nlohmann::json info = {{"generator", "synth bin"},
+                         {"seed", options.seed},
+                         {"bin_index", index},
+                         {"cad", cad},
+                         {"parts_dropped", views.physics.dropped},
+                         {"parts_removed", views.physics.removed},
+                         {"parts_in_bin", views.parts.size()},
+                         {"physics_steps", views.physics.steps},
+                         {"at_rest", views.physics.at_rest},
+                         {"pattern_seed", settings.projector.pattern_seed},
+                         {"settings", settings_json(bin_setting_options(named), settings.rig.width,
+                                                    settings.rig.height)}};
+  write_atomically(folder + "/sim_info.json", [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << info.dump(2) << "\n";
+    if (!out.flush()) throw InputError(folder + "/sim_info.json", "cannot be written");
+  });
+}
+
+}  // namespace
+
+int run_synth_bin_command(std::vector<std::string> args) {
+  if (const auto code = usage_exit_code(args, print_help)) return *code;
+  const SynthBinOptions options = parse_synth_bin_options(std::move(args));
+  check_bin_folders(options);
+  const std::string cad = options.cad.empty() ? default_cad_dir() : options.cad;
+  const PartLibrary parts = PartLibrary::load_folder(cad);
+  const BinSimulator simulator(options.settings, parts);
+
+  const fs::path root(options.output);
+  std::error_code ec;
   fs::create_directories(root, ec);
-  if (ec) throw InputError("option -o", output + " cannot be created (" + ec.message() + ")");
-  ProgressBar progress(count, "bins");
+  if (ec) throw InputError("option -o", options.output + " cannot be created (" + ec.message() + ")");
+  ProgressBar progress(options.count, "bins");
   double physics_ms = 0.0, render_ms = 0.0;
   std::int64_t part_count = 0;
-  for (std::int64_t i = 0; i < count; ++i) {
-    const fs::path bin = root / bin_name(i, count);
-    StagedFolder staged(bin.string(), overwrite);
-    const BinViews views = simulator.simulate(seed, i);
+  for (std::int64_t i = 0; i < options.count; ++i) {
+    StagedFolder staged((root / bin_name(i, options.count)).string(), options.overwrite);
+    const BinViews views = simulator.simulate(options.seed, i);
     write_bin_folder(staged.path(), simulator.rig(), views);
-    // What made the bin and how the physics went (no timings: same seed, same bytes).
-    nlohmann::json info = {{"generator", "synth bin"},
-                           {"seed", seed},
-                           {"bin_index", i},
-                           {"cad", cad},
-                           {"parts_dropped", views.physics.dropped},
-                           {"parts_removed", views.physics.removed},
-                           {"parts_in_bin", views.parts.size()},
-                           {"physics_steps", views.physics.steps},
-                           {"at_rest", views.physics.at_rest},
-                           {"pattern_seed", settings.projector.pattern_seed},
-                           {"settings", settings_json(bin_setting_options(settings), settings.rig.width,
-                                                      settings.rig.height)}};
-    write_atomically(staged.path() + "/sim_info.json", [&](const std::string& tmp) {
-      std::ofstream out(tmp);
-      out << info.dump(2) << "\n";
-      if (!out.flush()) throw InputError(staged.path() + "/sim_info.json", "cannot be written");
-    });
+    write_sim_info(staged.path(), options, cad, i, views);
     staged.commit();
     physics_ms += views.physics_ms;
     render_ms += views.render_ms;
@@ -187,8 +217,8 @@ int run_synth_bin_command(std::vector<std::string> args) {
   progress.finish();
   std::fprintf(stderr,
                "wrote %lld bins to %s: %.1f parts per bin, %.2f s physics + %.2f s rendering per bin\n",
-               static_cast<long long>(count), output.c_str(), double(part_count) / count,
-               physics_ms / 1000.0 / count, render_ms / 1000.0 / count);
+               static_cast<long long>(options.count), options.output.c_str(), double(part_count) / options.count,
+               physics_ms / 1000.0 / options.count, render_ms / 1000.0 / options.count);
   return 0;
 }
 

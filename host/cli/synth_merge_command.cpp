@@ -4,10 +4,10 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/synth_commands.h"
-#include "host/cli/synth_run.h"
 #include "host/dataset/dataset_merge.h"
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
+#include "host/synth/synth_run.h"
 
 namespace flexsight {
 namespace {

@@ -1,20 +1,16 @@
 // flexsight synth patches: segmented patches of parts, cut from any BOP folder with
 // mask_visib (the real T-LESS training images, where each part lies alone on black, or
 // rendered scenes), for flexsight synth semi.
-#include <algorithm>
-#include <atomic>
-#include <filesystem>
+#include <cstdint>
 #include <iostream>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "host/cli/arguments.h"
-#include "host/cli/progress_bar.h"
 #include "host/cli/synth_commands.h"
 #include "host/dataset/bop_reader.h"
 #include "host/io/input_error.h"
+#include "host/io/progress_bar.h"
 #include "host/io/staged_folder.h"
-#include "host/synth/patch_library.h"
+#include "host/synth/patch_cutting.h"
 
 namespace flexsight {
 namespace {
@@ -51,34 +47,7 @@ int run_synth_patches_command(std::vector<std::string> args) {
   StagedFolder staged(output, overwrite);
 
   ProgressBar progress(static_cast<std::int64_t>(reader.size()), "images");
-  std::atomic<std::int64_t> written{0};
-  for (std::size_t i = 0; i < reader.size(); ++i) {
-    const AnnotatedImage image = reader.load(i);
-    for (std::size_t gt_id = 0; gt_id < image.parts.size(); ++gt_id) {
-      PartAnnotation part = image.parts[gt_id];
-      if (part.mask_visib.empty()) {
-        throw InputError(args[0], "scene " + std::to_string(image.scene_id) + " has no mask_visib/ "
-                                  "(needed to cut patches)");
-      }
-      if (part.px_count_visib == 0) {
-        // No scene_gt_info.json: the counts from the masks. Without the amodal mask
-        // the visible fraction is unknown; the part is taken as whole (T-LESS's
-        // training images show each part alone).
-        part.px_count_visib = cv::countNonZero(part.mask_visib);
-        part.visib_fract = part.mask.empty() ? 1.0
-                                             : part.px_count_visib /
-                                                   std::max(1.0, double(cv::countNonZero(part.mask)));
-      }
-      if (part.visib_fract < min_visible || part.px_count_visib < min_pixels) continue;
-      const cv::Rect box = cv::boundingRect(part.mask_visib);
-      const std::string path = staged.path() + "/" +
-          patch_file_name(part.obj_id, image.scene_id, image.im_id, static_cast<int>(gt_id));
-      std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-      write_patch(path, image.rgb(box), part.mask_visib(box));
-      ++written;
-    }
-    progress.advance();
-  }
+  const std::int64_t written = cut_patches(reader, args[0], staged.path(), min_visible, min_pixels, progress);
   if (written == 0) {
     throw InputError(args[0], "no part is visible enough for a patch (--min-visible, --min-pixels)");
   }

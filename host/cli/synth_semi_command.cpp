@@ -6,7 +6,7 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/synth_commands.h"
-#include "host/cli/synth_run.h"
+#include "host/cli/synth_run_options.h"
 #include "host/cli/synth_settings_options.h"
 #include "host/dataset/coco_writer.h"
 #include "host/dataset/detection_data.h"

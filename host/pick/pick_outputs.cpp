@@ -1,4 +1,4 @@
-#include "host/cli/pick_outputs.h"
+#include "host/pick/pick_outputs.h"
 
 #include <nlohmann/json.hpp>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "host/cli/pick_scoring.h"
+#include "host/eval/pick_scoring.h"
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>

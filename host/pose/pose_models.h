@@ -1,7 +1,7 @@
 #pragma once
-// What `flexsight pose` reads before it starts: the template file and the CAD models of
-// the parts it names, checked against each other, so that a missing model or template
-// is an error before any work.
+// What pose estimation reads before it starts (`flexsight pose`, the pick job): the
+// template file and the CAD models of the parts it names, checked against each other, so
+// that a missing model or template is an error before any work.
 #include <map>
 #include <memory>
 #include <string>

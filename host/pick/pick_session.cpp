@@ -1,4 +1,4 @@
-#include "host/cli/pick_pipeline.h"
+#include "host/pick/pick_session.h"
 
 #include <omp.h>
 
@@ -12,6 +12,7 @@
 #include "host/geometry/depth_from_disparity.h"
 #include "host/io/input_error.h"
 #include "host/stereo/disparity_upsampling.h"
+#include "host/stereo/stereo_backend.h"
 
 namespace flexsight {
 namespace {
@@ -44,9 +45,65 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
   return upsample_disparity(result.disparity, result.planes_left, left.size());
 }
 
+// Each proposal (pose_proposals) posed in its box, several at once (one estimator per
+// thread); the parts a template fits, in proposal order.
+std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
+                                           const PickSettings& settings) {
+  const cv::Rect image_rect(cv::Point(), bgr.size());
+  const std::vector<int> proposals = pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou);
+  std::vector<PickCandidate> candidates(proposals.size());
+  std::vector<bool> posed(proposals.size(), false);
+  std::exception_ptr failure;
+  const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
+#pragma omp parallel num_threads(threads)
+  {
+    PoseEstimator estimator(settings.pose);
+#pragma omp for schedule(dynamic)
+    for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
+      try {
+        const ObjectDetection& d = result.detections[proposals[i]];
+        const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
+                                      cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
+                             image_rect;
+        if (box.width < 4 || box.height < 4) continue;
+        const PoseModel& model = models.model(d.category_id, settings.model);
+        PoseEstimate estimate;
+        try {
+          estimate = estimator.estimate(model, bgr, result.depth_mm, result.camera, box);
+        } catch (const InputError&) {
+          continue;  // a box without any measured depth: nothing to pose it with
+        }
+        // No template of the class fits the box at the measured depth: a box of another
+        // class, or of several parts; nothing was posed.
+        if (estimate.candidates == 0) continue;
+        PickCandidate& c = candidates[i];
+        c.obj_id = d.category_id;
+        c.pose = estimate.pose;
+        c.box = box;
+        c.detection_score = d.score;
+        c.pose_score = estimate.score;
+        c.times = estimate.times;
+        c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
+                                              kVisibilityToleranceMm);
+        c.height_mm = result.floor_depth_mm > 0.0 ? result.floor_depth_mm - estimate.pose.t.z() : 0.0;
+        posed[i] = true;
+      } catch (...) {
+#pragma omp critical
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  std::vector<PickCandidate> picks;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (posed[i]) picks.push_back(candidates[i]);
+  }
+  return picks;
+}
+
 }  // namespace
 
-struct PickPipeline::Impl {
+struct PickSession::Impl {
   PickSettings settings;
   ComputeBackend compute;
   StereoBackend stereo;
@@ -69,16 +126,16 @@ struct PickPipeline::Impl {
   }
 };
 
-PickPipeline::PickPipeline(const PickSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+PickSession::PickSession(const PickSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
 
-void PickPipeline::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
+void PickSession::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
 
-cv::Mat PickPipeline::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
+cv::Mat PickSession::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
   return disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, impl_->settings.stereo,
                             impl_->settings.stereo_downscale, ProgressCallback(), nullptr);
 }
 
-TilingPlan PickPipeline::detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const {
+TilingPlan PickSession::detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const {
   const PickSettings& settings = impl_->settings;
   if (settings.detection_tile == 0) return {};
   if (settings.detection_tile > 0) {
@@ -104,12 +161,12 @@ TilingPlan PickPipeline::detection_tiling(cv::Size image, const PinholeCamera& c
   return tiling_for_part_sizes(image, focal * diameters[diameters.size() / 2] / depth,
                                focal * diameters.back() / depth);
 }
-PickPipeline::~PickPipeline() = default;
-const PoseModels& PickPipeline::models() const { return impl_->models; }
-const SsdDetector& PickPipeline::detector() const { return impl_->detector; }
+PickSession::~PickSession() = default;
+const PoseModels& PickSession::models() const { return impl_->models; }
+const SsdDetector& PickSession::detector() const { return impl_->detector; }
 
-PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
-                             const cv::Mat& texture_left_rgb8) {
+PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
+                              const cv::Mat& texture_left_rgb8) {
   const PickSettings& settings = impl_->settings;
   PickResult result;
   result.camera = left_camera(rig, left_rgb8.size());
@@ -140,54 +197,7 @@ PickResult PickPipeline::run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
 
   // Each detection posed on its own, several at once (one estimator per thread).
   start = Clock::now();
-  const cv::Rect image_rect(cv::Point(), bgr.size());
-  const std::vector<int> proposals = pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou);
-  std::vector<PickCandidate> candidates(proposals.size());
-  std::vector<bool> posed(proposals.size(), false);
-  std::exception_ptr failure;
-  const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
-#pragma omp parallel num_threads(threads)
-  {
-    PoseEstimator estimator(settings.pose);
-#pragma omp for schedule(dynamic)
-    for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
-      try {
-        const ObjectDetection& d = result.detections[proposals[i]];
-        const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
-                                      cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
-                             image_rect;
-        if (box.width < 4 || box.height < 4) continue;
-        const PoseModel& model = impl_->models.model(d.category_id, settings.model);
-        PoseEstimate estimate;
-        try {
-          estimate = estimator.estimate(model, bgr, result.depth_mm, result.camera, box);
-        } catch (const InputError&) {
-          continue;  // a box without any measured depth: nothing to pose it with
-        }
-        // No template of the class fits the box at the measured depth: a box of another
-        // class, or of several parts; nothing was posed.
-        if (estimate.candidates == 0) continue;
-        PickCandidate& c = candidates[i];
-        c.obj_id = d.category_id;
-        c.pose = estimate.pose;
-        c.box = box;
-        c.detection_score = d.score;
-        c.pose_score = estimate.score;
-        c.times = estimate.times;
-        c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
-                                              kVisibilityToleranceMm);
-        c.height_mm = result.floor_depth_mm > 0.0 ? result.floor_depth_mm - estimate.pose.t.z() : 0.0;
-        posed[i] = true;
-      } catch (...) {
-#pragma omp critical
-        if (!failure) failure = std::current_exception();
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (posed[i]) result.picks.push_back(candidates[i]);
-  }
+  result.picks = pose_detections(result, bgr, impl_->models, settings);
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();

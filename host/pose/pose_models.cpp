@@ -1,4 +1,4 @@
-#include "host/cli/pose_inputs.h"
+#include "host/pose/pose_models.h"
 
 #include <cstdlib>
 

@@ -1,4 +1,4 @@
-#include "host/cli/pick_report.h"
+#include "host/eval/pick_report.h"
 
 #include <cmath>
 #include <cstdio>

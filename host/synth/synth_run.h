@@ -1,12 +1,11 @@
 #pragma once
-// What every `flexsight synth` generator shares: the options that say how many images,
-// which of them (--shard), where and in which format; and the run that makes them on
+// What every synthetic-data generator shares: the run options that say how many images,
+// which of them (a shard), where and in which format; and the run that makes them on
 // all cores, writes them as a BOP + COCO data set with a contact sheet, shows progress,
 // and leaves the output folder whole or untouched.
 #include <cstdint>
 #include <functional>
 #include <string>
-#include <vector>
 
 #include "host/dataset/annotated_image.h"
 #include "host/dataset/dataset_info.h"
@@ -23,11 +22,6 @@ struct SynthRunOptions {
   int threads = 0;          // --threads: images made at once (0: all cores)
   DatasetWriterOptions dataset;  // --rgb, --no-depth, --no-masks; categories; settings
 };
-
-// Takes the options above out of `args` (see synth_options_help) and checks them.
-// Throws InputError naming the option.
-SynthRunOptions take_synth_run_options(std::vector<std::string>& args);
-std::string synth_options_help();
 
 // Images [first, last) of this shard.
 std::int64_t shard_first_image(const SynthRunOptions& options);

@@ -1,13 +1,13 @@
-#include "host/cli/pose_scoring.h"
+#include "host/eval/pose_scoring.h"
 
 #include <cmath>
 #include <filesystem>
 #include <optional>
 
-#include "host/cli/progress_bar.h"
 #include "host/dataset/dataset_files.h"
 #include "host/eval/pose_recall.h"
 #include "host/io/input_error.h"
+#include "host/io/progress_bar.h"
 #include "host/pose/model_symmetries.h"
 #include "host/synth/part_library.h"
 

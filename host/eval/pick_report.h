@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "host/cli/pick_scoring.h"
+#include "host/eval/pick_scoring.h"
 
 namespace flexsight {
 

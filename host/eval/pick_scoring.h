@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "host/cli/pick_pipeline.h"
-#include "host/cli/pose_scoring.h"
 #include "host/eval/detection_metrics.h"
+#include "host/eval/pose_scoring.h"
+#include "host/pick/pick_session.h"
 
 namespace flexsight {
 

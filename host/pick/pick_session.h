@@ -1,18 +1,21 @@
 #pragma once
-// The whole job of `flexsight pick` on one rectified pair: stereo depth, detection, the
-// pose in each box, and the ranked list for the robot. One ComputeBackend (one OpenCL
-// context) serves the matcher and the detector's post-processing.
+// The pick job on one rectified pair: stereo depth, detection, the pose in each box, and
+// the ranked list for the robot. A PickSession loads its models once (detector,
+// templates, CAD parts, the OpenCL context) and serves any number of pairs: `flexsight
+// pick`, `flexsight eval-pick` and a service all call PickSession::pick. One
+// ComputeBackend (one OpenCL context) serves the matcher and the detector's
+// post-processing.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
-#include "host/cli/backend.h"
-#include "host/cli/pose_inputs.h"
 #include "host/detect/ssd_detector.h"
 #include "host/detect/tiled_detection.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/pick/pick_ranking.h"
+#include "host/pose/pose_models.h"
+#include "host/runtime/device_options.h"
 #include "host/stereo/stereo_params.h"
 
 namespace flexsight {
@@ -59,15 +62,15 @@ struct PickResult {
   std::string stereo_path, detector_path;  // which backend each ran on
 };
 
-class PickPipeline {
+class PickSession {
  public:
   // Loads and checks everything before any image: the detector (its files), the
   // templates against the CAD folder, and that every class the detector knows has a
   // model and templates (else an InputError naming --model). Builds the OpenCL parts.
-  explicit PickPipeline(const PickSettings& settings);
-  ~PickPipeline();
-  PickPipeline(const PickPipeline&) = delete;
-  PickPipeline& operator=(const PickPipeline&) = delete;
+  explicit PickSession(const PickSettings& settings);
+  ~PickSession();
+  PickSession(const PickSession&) = delete;
+  PickSession& operator=(const PickSession&) = delete;
 
   const PoseModels& models() const;
   const SsdDetector& detector() const;
@@ -75,8 +78,8 @@ class PickPipeline {
   // `texture_left_rgb8`: the left view with the projector off, when the camera takes one
   // (empty otherwise): detection and the pose's edges then use it, since the projector's
   // dots hide the parts from a detector trained without them and are edges themselves.
-  PickResult run(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
-                 const cv::Mat& texture_left_rgb8 = cv::Mat());
+  PickResult pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
+                  const cv::Mat& texture_left_rgb8 = cv::Mat());
 
   // The matcher's disparity range for the next pairs (each bin's calib.txt may give its own).
   void set_ndisp(int ndisp);
@@ -89,6 +92,5 @@ class PickPipeline {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
 
 }  // namespace flexsight

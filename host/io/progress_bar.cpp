@@ -1,4 +1,4 @@
-#include "host/cli/progress_bar.h"
+#include "host/io/progress_bar.h"
 
 #include <unistd.h>
 

@@ -1,8 +1,8 @@
-// eval-pick's scoring of one bin (host/cli/pick_scoring.h) on a bin `synth bin` renders:
+// eval-pick's scoring of one bin (host/eval/pick_scoring.h) on a bin `synth bin` renders:
 // picks at the ground-truth poses are all right, picks moved by 0.2 d are all wrong, the
 // ground-truth disparity has bad-2 0 and a disparity 3 px off has bad-2 100 %, and the
 // detection truth is the parts in view.
-#include "host/cli/pick_scoring.h"
+#include "host/eval/pick_scoring.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,10 @@
 #pragma once
-// What `flexsight pick` writes: the ranked parts for the robot as JSON (docs/pick.md
-// documents every key) and one picture with the boxes and the parts' outlines.
+// What a pick writes (`flexsight pick`, `eval-pick`): the ranked parts for the robot as
+// JSON (docs/pick.md documents every key) and one picture with the boxes and the parts'
+// outlines.
 #include <string>
 
-#include "host/cli/pick_pipeline.h"
+#include "host/pick/pick_session.h"
 
 namespace flexsight {
 
