@@ -12,8 +12,6 @@ namespace {
 
 using Json = nlohmann::json;
 
-using namespace dataset_test_support;
-
 // ---- reports ---------------------------------------------------------------------
 
 EvalReport sample_report() {
