@@ -1,20 +1,29 @@
 """Detections from the raw SSD outputs, and average precision at IoU 0.5: a quick check of a
 training run in Python, and a reference for the C++ decoder.
 
-Decoding (TF OD API post-processing): boxes from the encodings and the anchors, scores =
-softmax over the C + 1 logits (background at 0), per class the boxes above `score_threshold`,
-non-maximum suppression at IoU `nms_iou` per class, the `max_detections` best overall.
+Decoding (TF OD API post-processing, as the C++ one): boxes from the encodings and the anchors,
+clipped to the image, scores = softmax over the C + 1 logits (background at 0), per class the
+boxes above `score_threshold`, non-maximum suppression per class of the boxes overlapping a better
+one by IoU above `nms_iou`, the `max_detections` best overall.
+tests/detect/python/test_detect_eval_matches_cpp.py checks both against `flexsight detect` and
+`flexsight eval-det`.
 AP: per class, detections sorted by score, greedy matching to unmatched ground truth at
 IoU >= 0.5, all-point interpolated precision (the VOC 2010+ / COCO rule at one threshold);
 the mean is over the classes that have ground truth.
 
-    python3 detect_eval.py --checkpoint RUN/model.pt --data DATA [--limit 200]
+    python3 -m detect.detect_eval --checkpoint RUN/model.pt --data DATA [--limit 200]
 """
 from __future__ import annotations
 
-import numpy as np
+import argparse
+from pathlib import Path
 
-import anchors as anc
+import numpy as np
+import torch
+
+from . import anchors as anc
+from .coco_set import CocoSet
+from .export_onnx import load_checkpoint
 
 
 def nms(boxes: np.ndarray, scores: np.ndarray, iou_threshold: float) -> np.ndarray:
@@ -27,7 +36,7 @@ def nms(boxes: np.ndarray, scores: np.ndarray, iou_threshold: float) -> np.ndarr
         if order.size == 1:
             break
         ious = anc.iou(boxes[i:i + 1], boxes[order[1:]])[0]
-        order = order[1:][ious < iou_threshold]
+        order = order[1:][ious <= iou_threshold]  # IoU above the threshold suppresses, as in C++
     return np.array(keep, np.int64)
 
 
@@ -39,7 +48,7 @@ def decode_detections(box_encodings: np.ndarray, class_logits: np.ndarray, ancho
     z = class_logits - class_logits.max(1, keepdims=True)
     p = np.exp(z)
     p /= p.sum(1, keepdims=True)
-    boxes = anc.corners(anc.decode(box_encodings, anchors))
+    boxes = np.clip(anc.corners(anc.decode(box_encodings, anchors)), 0.0, 1.0)  # as TF and C++ clip
     out_b, out_s, out_c = [], [], []
     for c in range(1, p.shape[1]):
         idx = np.nonzero(p[:, c] > score_threshold)[0]
@@ -96,14 +105,6 @@ def average_precision_50(detections, ground_truth, num_classes: int):
 
 
 def main(argv=None) -> int:
-    import argparse
-    from pathlib import Path
-
-    import torch
-
-    from export_onnx import load_checkpoint
-    from train import CocoSet
-
     ap = argparse.ArgumentParser(description="AP@0.5 of a trained checkpoint on a COCO data set.")
     ap.add_argument("--checkpoint", type=Path, required=True)
     ap.add_argument("--data", type=Path, required=True, help="folder with coco_instances.json")

@@ -7,8 +7,8 @@ outputs `box_encodings` [1, 1917, 4] (ty, tx, th, tw; scale factors 10, 10, 5, 5
 are removed (OpenCV 4.6 rejects some, e.g. one on the graph input). Opset 10 only: with 11,
 ReLU6 becomes a Clip with min/max inputs that OpenCV 4.6's importer rejects.
 
-    python3 export_onnx.py --checkpoint run/model.pt -o model.onnx   # a trained model
-    python3 export_onnx.py --oidv4 -o oidv4.onnx                      # the OIDv4 detector as is
+    python3 -m detect.export_onnx --checkpoint run/model.pt -o model.onnx   # a trained model
+    python3 -m detect.export_onnx --oidv4 -o oidv4.onnx                      # the OIDv4 detector as is
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from ssd_model import SSD_OIDV4, SSDMobileNetV2, load_detector_from_tflite, preprocess
+from .ssd_model import SSD_OIDV4, SSDMobileNetV2, load_detector_from_tflite, preprocess
 
 INPUT_NAME = "image"
 OUTPUT_NAMES = ("box_encodings", "class_logits")

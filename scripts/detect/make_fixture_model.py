@@ -35,23 +35,21 @@ Written (all small):
                                                     networks that break the contract, for the
                                                     load checks
 
-    /usr/bin/python3 scripts/detect/make_fixture_model.py [-o tests/data/detect/tiny_ssd]
+    PYTHONPATH=scripts /usr/bin/python3 -m detect.make_fixture_model [-o tests/data/detect/tiny_ssd]
 """
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
 import torch
 from torch import nn
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import anchors as anc  # noqa: E402
-from export_onnx import OUTPUT_NAMES, export  # noqa: E402
-from train import write_model_json  # noqa: E402
+from . import anchors as anc
+from .export_onnx import OUTPUT_NAMES, export
+from .train import write_model_json
 
 LABELS = ((5, "red_box"), (7, "green_box"), (9, "blue_box"))  # category id, name
 CLASSES = len(LABELS)

@@ -24,8 +24,8 @@ import numpy as np
 import torch
 from torch import nn
 
-from anchors import anchors_per_cell
-from tflite_reader import TfliteModel
+from .anchors import anchors_per_cell
+from .tflite_reader import TfliteModel
 
 MODELS_DIR = Path(os.environ.get("FLEXSIGHT_DETECTION_MODELS",
                                  Path(__file__).resolve().parents[3] / "shared/detection/models"))

@@ -16,7 +16,7 @@ anchors.csv, labels.txt, model.json (score function, input size and range, box s
 loss.png, summary.json (timings, losses, AP@0.5 of the
 validation images and of as many training images).
 
-    python3 train.py --data DIR --out RUN --epochs 30
+    python3 -m detect.train --data DIR --out RUN --epochs 30     # from scripts/
 """
 from __future__ import annotations
 
@@ -35,8 +35,11 @@ import torch
 import torch.nn.functional as F
 from PIL import Image
 
-import anchors as anc
-from ssd_model import FEATURE_BLOCK, MODELS_DIR, SSDMobileNetV2, build_model
+from . import anchors as anc
+from .coco_set import CocoSet
+from .detect_eval import average_precision_50, decode_detections
+from .export_onnx import check_with_opencv, export
+from .ssd_model import FEATURE_BLOCK, MODELS_DIR, SSDMobileNetV2, build_model
 
 CL = torch.channels_last  # NHWC: PyTorch's CPU convolutions (oneDNN) run ~2x faster in it
 NEG_POS_RATIO = 3
@@ -46,49 +49,6 @@ MIN_NEGATIVES = 8  # per image, so that images without parts still teach backgro
 
 # ----------------------------------------------------------------------------------------------
 # Data
-
-class CocoSet:
-    """Images and boxes of a COCO instances file; boxes normalised, class 1..C by sorted id."""
-
-    def __init__(self, coco_path: Path, limit: int = 0):
-        coco = json.loads(coco_path.read_text())
-        self.root = coco_path.parent
-        self.categories = sorted(coco["categories"], key=lambda c: c["id"])
-        index = {c["id"]: i + 1 for i, c in enumerate(self.categories)}
-        self.images = sorted(coco["images"], key=lambda im: im["id"])
-        if limit:  # the first images of a data set: the data-size experiments share one set
-            self.images = self.images[:limit]
-            kept = {im["id"] for im in self.images}
-            coco["annotations"] = [a for a in coco["annotations"] if a["image_id"] in kept]
-        boxes = {im["id"]: [] for im in self.images}
-        for a in coco["annotations"]:
-            if a.get("iscrowd", 0) or a["bbox"][2] <= 0 or a["bbox"][3] <= 0:
-                continue
-            boxes[a["image_id"]].append((a["bbox"], index[a["category_id"]]))
-        self.gt = []
-        for im in self.images:
-            w, h = float(im["width"]), float(im["height"])
-            c = np.array([[y / h, x / w, (y + bh) / h, (x + bw) / w]
-                          for (x, y, bw, bh), _ in boxes[im["id"]]], np.float32).reshape(-1, 4)
-            l = np.array([k for _, k in boxes[im["id"]]], np.int64)
-            self.gt.append((c, l))
-
-    def __len__(self):
-        return len(self.images)
-
-    def path(self, i: int) -> Path:
-        return self.root / self.images[i]["file_name"]
-
-    def image_tensor(self, i: int, size: int) -> torch.Tensor:
-        img = Image.open(self.path(i)).convert("RGB")
-        if img.size != (size, size):
-            img = img.resize((size, size), Image.BILINEAR)
-        x = np.asarray(img, np.float32) / 127.5 - 1.0
-        return torch.from_numpy(x.transpose(2, 0, 1).copy())
-
-    def images_tensor(self, idx, size: int) -> torch.Tensor:
-        return torch.stack([self.image_tensor(int(i), size) for i in idx])
-
 
 def match_all(data: CocoSet, anchors: np.ndarray):
     labels = np.zeros((len(data), len(anchors)), np.int64)
@@ -226,7 +186,6 @@ def evaluate(args, model, data, feats, labels, targets, idx):
 def average_precision(args, model, data, feats, idx, per_class: bool = False):
     """AP@0.5 (detect_eval) of the model on the images idx; with feats None the whole network
     runs on the images (held-out test sets have no cache)."""
-    from detect_eval import average_precision_50, decode_detections
     anchors = anc.generate()
     model.eval()
     dets = []
@@ -294,7 +253,6 @@ def write_outputs(model, data, out: Path) -> None:
                                   for i, c in enumerate(data.categories)]
     (out / "labels.txt").write_text("\n".join(lines) + "\n")
     write_model_json(out / "model.json", model.image_size)
-    from export_onnx import check_with_opencv, export
     export(model, out / "model.onnx")
     try:
         import cv2  # noqa: F401

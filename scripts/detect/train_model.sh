@@ -5,7 +5,7 @@
 # MobileNetV2, train, export ONNX (checked in OpenCV's DNN) with anchors.csv, labels.txt and
 # model.json beside it, and score the held-out test set.
 #
-#   scripts/detect/train_model.sh [COUNT [RUN_DIR]] [-- train.py options]
+#   scripts/detect/train_model.sh [COUNT [RUN_DIR]] [-- detect.train options]
 #   scripts/detect/train_model.sh 20000 out/detect/ship -- --tune-from 13 --epochs 2
 #
 # Defaults: COUNT 20000, RUN_DIR out/detect/run, TEST_COUNT 1000 (environment), seed 1 for the
@@ -40,4 +40,4 @@ if [ ! -f "$run/test/coco_instances.json" ]; then
   build/flexsight synth full --count "$test_count" --seed 2 --no-depth --no-masks \
     --backgrounds "$run/backgrounds/test" -o "$run/test"
 fi
-"$python" scripts/detect/train.py --data "$run/data" --test "$run/test" --out "$run" "$@"
+PYTHONPATH=scripts "$python" -m detect.train --data "$run/data" --test "$run/test" --out "$run" "$@"

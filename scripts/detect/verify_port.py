@@ -21,10 +21,10 @@ import numpy as np
 import torch
 from PIL import Image
 
-import anchors as anc
-from ssd_model import (MOBILENET_V2_IMAGENET, SSD_OIDV4, MobileNetV2Features, SSDMobileNetV2,
+from . import anchors as anc
+from .ssd_model import (MOBILENET_V2_IMAGENET, SSD_OIDV4, MobileNetV2Features, SSDMobileNetV2,
                        _conv_ops, load_backbone_from_tflite, load_detector_from_tflite, preprocess)
-from tflite_reader import TfliteModel
+from .tflite_reader import TfliteModel
 
 DEFAULT_IMAGES = ("val_101085.jpg", "train_65019.jpg", "train_187029.jpg", "val_3096.jpg",
                   "train_100075.jpg", "val_38082.jpg")

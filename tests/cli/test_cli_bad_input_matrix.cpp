@@ -1,4 +1,4 @@
-// Bad input across the commands, as a table (issue 33): each case must exit with code 1,
+// Bad input across the commands, as a table: each case must exit with code 1,
 // name the file or option at fault in its message, create nothing, and leave every file
 // that was there before (outputs included) byte for byte as it was.
 #include <gtest/gtest.h>

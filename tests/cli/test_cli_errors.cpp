@@ -100,10 +100,10 @@ TEST_F(Cli, RejectsAnOutputInAMissingFolderWithoutLeavingFiles) {
   EXPECT_FALSE(fs::exists(dir_ / "no_such_dir"));
 }
 
-// ---- Defects found by trying the program with bad input (issue 33) ----------------
+// ---- Bad input at the edges of each option's type and range ----------------------
 
-// Integer options are read into their own type: values beyond it were wrapped modulo
-// 2^32 (--ndisp 4294967312 ran as ndisp 16).
+// Integer options are read into their own type: values beyond it are refused, not
+// wrapped modulo 2^32 (--ndisp 4294967312 would run as ndisp 16).
 TEST_F(Cli, IntegerOptionsBeyondTheirTypeAreRejectedNotWrapped) {
   const std::string pair = "stereo " + left_ + " " + right_ + " -o " + output_;
   for (const std::string option :
@@ -156,8 +156,8 @@ TEST_F(Cli, OpenCvMatchersRejectImagesTooSmallForThem) {
   }
 }
 
-// --gt is read and checked before matching: a bad one used to fail after -o had been
-// written over the file that was there.
+// --gt is read and checked before matching, so a bad one fails before -o writes over
+// the file that is there.
 TEST_F(Cli, ABadGroundTruthFailsBeforeAnyOutputIsWritten) {
   const std::string existing = "the disparity that was here";
   std::ofstream(output_) << existing;

@@ -52,7 +52,7 @@ TEST_F(Cli, OneLanePerWorkItemWritesTheReferenceBytes) {
   EXPECT_TRUE(flexsight::testing_support::same_bytes(expected, flexsight::read_pfm(one_lane_pfm)));
 }
 
-// Issue 3's out-of-memory case, made reproducible by a device memory budget smaller
+// A device that runs out of memory, made reproducible by a device memory budget smaller
 // than the run needs: under opencl a non-zero exit naming the device, the step and the
 // buffer, and no output file; under auto the reference path's bytes, with a notice.
 TEST_F(Cli, ARunOverTheDeviceMemoryBudgetFailsNamingDeviceStepAndBuffer) {
@@ -99,7 +99,7 @@ TEST_F(Cli, RejectsADeviceMemoryBudgetThatIsNotAPositiveSize) {
                   "option --cl-max-memory: limits OpenCL device memory, but --device reference");
 }
 
-// Issue 3's "a device that fails to build a kernel", on PoCL: build options the compiler
+// A device that fails to build a kernel, on PoCL: build options the compiler
 // refuses make every kernel's build fail, as a driver's compiler bug would.
 TEST_F(Cli, AKernelBuildFailureFailsUnderOpenClWithTheDeviceAndTheBuildLog) {
   const std::string run = "stereo " + left_ + " " + right_ + " -o " + output_ +

@@ -172,16 +172,16 @@ TEST_F(SsdAnchorFile, MalformedContentNamesFileAndLine) {
   }
 }
 
-// The training script's anchors (scripts/detect/anchors.py, what the exported model's
-// sidecar holds) are the C++ generator's: the same layout, order and sizes. Not the same
+// The training script's anchors (scripts/detect/anchors.py, run as detect.anchors; what the
+// exported model's sidecar holds) are the C++ generator's: the same layout, order and sizes. Not the same
 // floats: the C++ generator repeats TF's float32 arithmetic (centres as row * stride +
 // offset in float), NumPy computes in doubles and rounds once, so about a quarter of the
 // values differ in their last bits (5e-5 relative at most). Inference decodes against
 // the sidecar shipped with the model, so the trained anchors are the ones used.
 TEST_F(SsdAnchorFile, TrainingScriptWritesTheSameAnchors) {
   const std::string file = path("python_anchors.csv");
-  const std::string command = std::string(FLEXSIGHT_PYTHON_BIN) + " " + FLEXSIGHT_SOURCE_DIR +
-                              "/scripts/detect/anchors.py " + file;
+  const std::string command = "PYTHONPATH=" + std::string(FLEXSIGHT_SOURCE_DIR) + "/scripts " +
+                              FLEXSIGHT_PYTHON_BIN + " -m detect.anchors " + file;
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   const std::vector<float> trained = read_anchor_file(file, kSsdMobileNetV2AnchorCount);
   const std::vector<float> generated = generate_ssd_anchors();

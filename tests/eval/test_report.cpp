@@ -1,16 +1,16 @@
 // Evaluation reports (host/eval/report.h): averages, the Markdown table and the JSON
-// document, read back by a small JSON reader.
+// document, read back by nlohmann::json.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "host/eval/report.h"
-#include "tests/eval/json_test_reader.h"
 
 namespace flexsight {
 namespace {
 
-using namespace dataset_test_support;
+using Json = nlohmann::json;
 
 // ---- reports ---------------------------------------------------------------------
 
@@ -71,36 +71,36 @@ TEST(Report, MarkdownHasScenesNumbersAndConventions) {
 TEST(Report, JsonParsesAndHoldsTheNumbers) {
   const std::string text = to_json(sample_report());
   EXPECT_NE(text.find("\"bad_2\""), std::string::npos);
-  const Json json = parse_json(text);
-  EXPECT_EQ(json["dataset_root"].text, "data/\"quoted\"\\path");
-  EXPECT_EQ(json["method"].text, "ppms");
-  EXPECT_EQ(json["matcher"].text, "reference path");
-  ASSERT_EQ(json["parameters"].keys.size(), 3u);  // every one, defaults included
-  EXPECT_EQ(json["parameters"]["window"].text, "35");
-  EXPECT_EQ(json["parameters"]["gamma-distance"].text, "inf");
-  ASSERT_EQ(json["scenes"].items.size(), 2u);
-  const Json& a = json["scenes"][0];
-  EXPECT_EQ(a["name"].text, "Adirondack");
-  EXPECT_EQ(a["width"].num(), 718);
-  EXPECT_EQ(a["ndisp"].num(), 73);
-  EXPECT_DOUBLE_EQ(a["seconds"].num(), 12.5);
-  EXPECT_DOUBLE_EQ(a["all"]["bad_0.5"].num(), 40);
-  EXPECT_DOUBLE_EQ(a["all"]["bad_2"].num(), 20);
-  EXPECT_DOUBLE_EQ(a["nonocc"]["bad_2"].num(), 12.5);
-  EXPECT_DOUBLE_EQ(a["all"]["avg_error"].num(), 2.25);
-  EXPECT_DOUBLE_EQ(a["all"]["density"].num(), 100);
-  EXPECT_EQ(a["all"]["evaluated"].num(), 300000);
-  EXPECT_EQ(json["scenes"][1]["name"].text, "Motor\tcycle");  // escaped and restored
-  EXPECT_DOUBLE_EQ(json["average"]["all"]["bad_2"].num(), 15);
-  EXPECT_DOUBLE_EQ(json["average"]["nonocc"]["bad_2"].num(), 10);
-  EXPECT_DOUBLE_EQ(json["average"]["seconds"].num(), 10);
+  const Json json = Json::parse(text);
+  EXPECT_EQ(json.at("dataset_root").get<std::string>(), "data/\"quoted\"\\path");
+  EXPECT_EQ(json.at("method").get<std::string>(), "ppms");
+  EXPECT_EQ(json.at("matcher").get<std::string>(), "reference path");
+  ASSERT_EQ(json.at("parameters").size(), 3u);  // every one, defaults included
+  EXPECT_EQ(json.at("parameters").at("window").get<std::string>(), "35");
+  EXPECT_EQ(json.at("parameters").at("gamma-distance").get<std::string>(), "inf");
+  ASSERT_EQ(json.at("scenes").size(), 2u);
+  const Json& a = json.at("scenes").at(0);
+  EXPECT_EQ(a.at("name").get<std::string>(), "Adirondack");
+  EXPECT_EQ(a.at("width").get<double>(), 718);
+  EXPECT_EQ(a.at("ndisp").get<double>(), 73);
+  EXPECT_DOUBLE_EQ(a.at("seconds").get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(a.at("all").at("bad_0.5").get<double>(), 40);
+  EXPECT_DOUBLE_EQ(a.at("all").at("bad_2").get<double>(), 20);
+  EXPECT_DOUBLE_EQ(a.at("nonocc").at("bad_2").get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(a.at("all").at("avg_error").get<double>(), 2.25);
+  EXPECT_DOUBLE_EQ(a.at("all").at("density").get<double>(), 100);
+  EXPECT_EQ(a.at("all").at("evaluated").get<double>(), 300000);
+  EXPECT_EQ(json.at("scenes").at(1).at("name").get<std::string>(), "Motor\tcycle");  // escaped and restored
+  EXPECT_DOUBLE_EQ(json.at("average").at("all").at("bad_2").get<double>(), 15);
+  EXPECT_DOUBLE_EQ(json.at("average").at("nonocc").at("bad_2").get<double>(), 10);
+  EXPECT_DOUBLE_EQ(json.at("average").at("seconds").get<double>(), 10);
 }
 
 TEST(Report, JsonOfEmptyReportParses) {
   EvalReport report;
-  const Json json = parse_json(to_json(report));
-  EXPECT_TRUE(json["scenes"].items.empty());
-  EXPECT_EQ(json["average"]["all"]["evaluated"].num(), 0);
+  const Json json = Json::parse(to_json(report));
+  EXPECT_TRUE(json.at("scenes").empty());
+  EXPECT_EQ(json.at("average").at("all").at("evaluated").get<double>(), 0);
 }
 
 }  // namespace

@@ -159,7 +159,7 @@ TEST(Calibration, MiddleburyRejectsMalformedValues) {
                                  "key 'ndisp' appears more than once"));
 }
 
-// Found by trying bad files (issue 33): values no rectified pair can have were taken.
+// Values no rectified pair can have are refused.
 TEST(Calibration, MiddleburyRejectsWhatCannotBeARectifiedPair) {
   ScratchDir dir;
   struct Case {

@@ -125,8 +125,8 @@ TEST(Pfm, ReadsHeaderLinesEndedByCarriageReturnAndNewline) {
   EXPECT_EQ(flexsight::read_pfm(path).at<float>(0, 0), newline_first);
 }
 
-// Found by trying bad files (issue 33): tokens on the wrong line were taken for others,
-// and bytes after the data were ignored.
+// The header is exactly three lines: tokens on the wrong line are not taken for others,
+// and bytes after the data are refused, not ignored.
 TEST(Pfm, RejectsHeadersThatAreNotThreeExactLines) {
   ScratchDir dir;
   struct Case {

@@ -57,12 +57,20 @@ TEST(DotProjector, SpotProfile) {
   EXPECT_EQ(pattern.intensity(dot + Eigen::Vector2d(0.0, 4 * sigma), 0.0), 0.0);
   // Widened by a pixel's footprint: lower peak, same light in all.
   EXPECT_NEAR(pattern.intensity(dot, sigma), 0.5, 1e-12);
-  // The same seed, the same layout; another seed, another.
-  settings.dots = 100;
-  EXPECT_EQ(DotPattern(settings).dots()[7], DotPattern(settings).dots()[7]);
+  // The layout is the seed's stream of draws with no state shared between patterns: a
+  // 100-dot pattern built after another seed's starts with the 10-dot pattern's dots;
+  // another seed gives another layout.
+  settings.dots = 10;
+  const DotPattern ten(settings);
   ProjectorSettings other = settings;
   other.pattern_seed = 2;
-  EXPECT_NE(DotPattern(settings).dots()[7], DotPattern(other).dots()[7]);
+  other.dots = 100;
+  const DotPattern other_seed(other);
+  settings.dots = 100;
+  const DotPattern hundred(settings);
+  ASSERT_EQ(hundred.dots().size(), 100u);
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(hundred.dots()[i], ten.dots()[i]) << "dot " << i;
+  EXPECT_NE(hundred.dots()[7], other_seed.dots()[7]);
 }
 
 TEST(DotProjector, DotFallsWhereItsDirectionMeetsTheFloor) {

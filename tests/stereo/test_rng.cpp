@@ -5,8 +5,14 @@
 
 #include "kernels/stereo/pms_math.h"
 
-TEST(CounterRandom, SameKeySameValue) {
-  EXPECT_EQ(pms_random_u32(7, 0, 1234, 3, 5), pms_random_u32(7, 0, 1234, 3, 5));
+// The value is the hash chain of the key fields in this order (seed, pixel, iteration and
+// view, trial): every stereo result depends on it, so the chain is pinned field by field.
+TEST(CounterRandom, IsTheHashChainOfItsKeyFields) {
+  const fs_u32 seeded = fs_hash(7U ^ 0x9e3779b9U);
+  const fs_u32 at_pixel = fs_hash(seeded ^ 1234U);
+  const fs_u32 at_iteration = fs_hash(at_pixel ^ (3U * 2U + 0U));
+  EXPECT_EQ(pms_random_u32(7, 0, 1234, 3, 5), fs_hash(at_iteration ^ 5U));
+  EXPECT_EQ(pms_random_u32(7, 1, 1234, 3, 5), fs_hash(fs_hash(at_pixel ^ (3U * 2U + 1U)) ^ 5U));
 }
 
 TEST(CounterRandom, EveryKeyFieldChangesTheValue) {

@@ -1,12 +1,10 @@
-"""Shared set-up of the detection Python tests: the scripts on sys.path and the shared model
-folder from the command line (tests/CMakeLists.txt passes FLEXSIGHT_DETECTION_DATA/models).
-A missing model file fails the test; it never skips."""
+"""Shared set-up of the detection Python tests: the shared model folder from the command line
+(tests/CMakeLists.txt passes FLEXSIGHT_DETECTION_DATA/models). A missing model file fails the
+test; it never skips. The tests import the package `detect` of scripts/, which ctest puts on
+PYTHONPATH (by hand: PYTHONPATH=scripts /usr/bin/python3 tests/detect/python/test_....py)."""
 import os
 import sys
 from pathlib import Path
-
-SCRIPTS = Path(__file__).resolve().parents[3] / "scripts" / "detect"
-sys.path.insert(0, str(SCRIPTS))
 
 
 def models_dir_from_argv() -> Path:

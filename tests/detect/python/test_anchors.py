@@ -6,8 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from detect_test_paths import SCRIPTS  # noqa: F401  (puts scripts/detect on sys.path)
-import anchors as anc  # noqa: E402
+from detect import anchors as anc
 
 
 class Layout(unittest.TestCase):

@@ -4,9 +4,8 @@ import unittest
 
 import numpy as np
 
-from detect_test_paths import SCRIPTS  # noqa: F401  (puts scripts/detect on sys.path)
-import anchors as anc  # noqa: E402
-from detect_eval import average_precision_50, decode_detections, nms  # noqa: E402
+from detect import anchors as anc
+from detect.detect_eval import average_precision_50, decode_detections, nms
 
 
 class Decode(unittest.TestCase):

@@ -11,8 +11,8 @@ from detect_test_paths import models_dir_from_argv
 
 MODELS = models_dir_from_argv()
 import onnx  # noqa: E402
-import ssd_model as sm  # noqa: E402
-from export_onnx import check_with_opencv, export, strip_identities  # noqa: E402
+from detect import ssd_model as sm  # noqa: E402
+from detect.export_onnx import check_with_opencv, export, strip_identities  # noqa: E402
 from PIL import Image  # noqa: E402
 
 

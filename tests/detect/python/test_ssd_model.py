@@ -10,9 +10,9 @@ from PIL import Image
 from detect_test_paths import models_dir_from_argv
 
 MODELS = models_dir_from_argv()
-import ssd_model as sm  # noqa: E402
-from tflite_reader import TfliteModel  # noqa: E402
-from train import ssd_loss  # noqa: E402
+from detect import ssd_model as sm  # noqa: E402
+from detect.tflite_reader import TfliteModel  # noqa: E402
+from detect.train import ssd_loss  # noqa: E402
 
 # tflite-runtime 2.14 on the centre 300x300 crop of backgrounds/val_101085.jpg (x / 127.5 - 1):
 # anchor -> (box encodings, first five class logits).

@@ -6,7 +6,7 @@ import numpy as np
 from detect_test_paths import models_dir_from_argv
 
 MODELS = models_dir_from_argv()
-from tflite_reader import TfliteModel  # noqa: E402
+from detect.tflite_reader import TfliteModel  # noqa: E402
 
 OIDV4 = MODELS / "ssd_mobilenetv2_oidv4/object_detection_ssd_mobilenetv2_oidv4_fp16.tflite"
 V2_INT8 = MODELS / "mobilenet_imagenet/tf2_mobilenet_v2_1.0_224_ptq.tflite"

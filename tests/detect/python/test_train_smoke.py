@@ -12,7 +12,7 @@ from detect_test_paths import models_dir_from_argv
 MODELS = models_dir_from_argv()
 import subprocess  # noqa: E402
 
-import train  # noqa: E402
+from detect import train  # noqa: E402
 
 
 def pop_arg(name: str) -> Path:

@@ -16,14 +16,10 @@
 namespace flexsight::opencl::test {
 namespace {
 
+// That the reference stages change planes on these cases (so that the comparisons below
+// compare work done) is checked apart, without a device, in
+// tests/stereo/test_patchmatch_stage_changes.cpp.
 class PatchMatchStage : public ::testing::TestWithParam<LevelCase> {};
-
-// Fails the test when a stage left every plane of a field of more than a few pixels as
-// it was: the comparison would then prove little.
-void expect_some_change(const PlaneField& before, const PlaneField& after) {
-  if (before.pixels() < 500) return;
-  EXPECT_NE(before.planes, after.planes) << "the reference stage changed no plane";
-}
 
 TEST_P(PatchMatchStage, InitRandomPlanes) {
   LevelFixture f(GetParam());
@@ -81,9 +77,7 @@ TEST_P(PatchMatchStage, PropagateSpatialWithoutConfidence) {
   for (int view = 0; view < 2; ++view) {
     for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
-      const PlaneField before = f.fields[view];
       propagate_spatial(f.in, view, parity, schedule, nullptr, f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       stages().propagate_spatial(f.device_in, view, parity, schedule, nullptr, field);
       expect_same_field(f.fields[view], field);
     }
@@ -103,9 +97,7 @@ TEST_P(PatchMatchStage, PropagateSpatialWithConfidence) {
   for (int view = 0; view < 2; ++view) {
     for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
-      const PlaneField before = f.fields[view];
       propagate_spatial(f.in, view, parity, schedule, &confidence, f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       stages().propagate_spatial(f.device_in, view, parity, schedule, &device_confidence,
                                  field);
       expect_same_field(f.fields[view], field);
@@ -120,10 +112,8 @@ TEST_P(PatchMatchStage, PropagateView) {
     for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
       const DeviceField other = upload(f.fields[1 - view], "other field");
-      const PlaneField before = f.fields[view];
       propagate_view(f.in, view, parity, SearchSchedule{}, nullptr, f.fields[1 - view],
                      f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       stages().propagate_view(f.device_in, view, parity, SearchSchedule{}, nullptr, other,
                               field);
       expect_same_field(f.fields[view], field);
@@ -151,7 +141,6 @@ TEST_P(PatchMatchStage, UnsurePixelsOnly) {
       propagate_view(f.in, view, parity, schedule, &confidence, f.fields[1 - view],
                      f.fields[view]);
       refine_random(f.in, view, parity, 9, schedule, &confidence, f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       for (size_t i = 0; i < confidence.size(); ++i) {
         if (!pms_is_confident(confidence[i], schedule.confident_threshold)) continue;
         ASSERT_EQ(0, std::memcmp(&before.planes[4 * i], &f.fields[view].planes[4 * i],
@@ -175,9 +164,7 @@ TEST_P(PatchMatchStage, RefineRandomWithoutConfidence) {
   for (int view = 0; view < 2; ++view) {
     for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
-      const PlaneField before = f.fields[view];
       refine_random(f.in, view, parity, 5, schedule, nullptr, f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       stages().refine_random(f.device_in, view, parity, 5, schedule, nullptr, field);
       expect_same_field(f.fields[view], field);
     }
@@ -194,9 +181,7 @@ TEST_P(PatchMatchStage, RefineRandomWithConfidence) {
   for (int view = 0; view < 2; ++view) {
     for (int parity = 0; parity < 2; ++parity) {
       DeviceField field = upload(f.fields[view], "field");
-      const PlaneField before = f.fields[view];
       refine_random(f.in, view, parity, 70, schedule, &confidence, f.fields[view]);
-      expect_some_change(before, f.fields[view]);
       stages().refine_random(f.device_in, view, parity, 70, schedule, &device_confidence, field);
       expect_same_field(f.fields[view], field);
     }
