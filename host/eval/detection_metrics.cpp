@@ -142,17 +142,14 @@ double box_iou(const BoxXywh& detection, const BoxXywh& truth, bool truth_is_cro
   return intersection / united;
 }
 
-DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& truth,
-                                    const std::vector<std::vector<DetectedBox>>& detections,
-                                    const std::vector<DetectionCategory>& categories,
-                                    const DetectionEvalOptions& options) {
-  options.check();
-  if (truth.size() != detections.size()) {
-    throw std::invalid_argument("evaluate_detections: " + std::to_string(truth.size()) +
-                                " images of ground truth but " +
-                                std::to_string(detections.size()) + " of detections");
-  }
-  // Sort every box into its class, keeping image order and order within the image.
+namespace {
+
+// Every box sorted into its class, keeping image order and order within the image; the
+// classes' box counts are added to `scores`.
+std::vector<ClassBoxes> boxes_by_class(const std::vector<std::vector<TruthBox>>& truth,
+                                       const std::vector<std::vector<DetectedBox>>& detections,
+                                       const std::vector<DetectionCategory>& categories,
+                                       DetectionScores& scores) {
   std::map<int, std::size_t> class_of_id;
   std::vector<ClassBoxes> boxes(categories.size());
   for (std::size_t c = 0; c < categories.size(); ++c) {
@@ -171,10 +168,6 @@ DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& tr
     }
     return found->second;
   };
-  DetectionScores scores;
-  scores.iou_threshold = options.iou_threshold;
-  scores.images = static_cast<int>(truth.size());
-  scores.classes.resize(categories.size());
   for (std::size_t i = 0; i < truth.size(); ++i) {
     for (const TruthBox& box : truth[i]) {
       const std::size_t c = class_index(box.category_id);
@@ -187,6 +180,26 @@ DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& tr
       scores.classes[c].detections += 1;
     }
   }
+  return boxes;
+}
+
+}  // namespace
+
+DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& truth,
+                                    const std::vector<std::vector<DetectedBox>>& detections,
+                                    const std::vector<DetectionCategory>& categories,
+                                    const DetectionEvalOptions& options) {
+  options.check();
+  if (truth.size() != detections.size()) {
+    throw std::invalid_argument("evaluate_detections: " + std::to_string(truth.size()) +
+                                " images of ground truth but " +
+                                std::to_string(detections.size()) + " of detections");
+  }
+  DetectionScores scores;
+  scores.iou_threshold = options.iou_threshold;
+  scores.images = static_cast<int>(truth.size());
+  scores.classes.resize(categories.size());
+  const std::vector<ClassBoxes> boxes = boxes_by_class(truth, detections, categories, scores);
 
   for (std::size_t c = 0; c < categories.size(); ++c) {
     ClassDetectionScores& result = scores.classes[c];

@@ -52,6 +52,48 @@ PinholeCamera camera_of(const PoseEvalImage& image) {
   return camera;
 }
 
+// The errors of the first `kept` estimates against the targets, with the estimates'
+// scores in `scores`; VSD's too when there is a `renderer` (of the model's depth).
+GroupErrors group_errors(const PoseEvalImage& image, const PoseErrorModel& model,
+                         const std::vector<const TruthInstance*>& targets,
+                         const std::vector<const EstimateInstance*>& estimates, std::size_t kept,
+                         ModelDepthRenderer* renderer, const PoseEvalSettings& settings,
+                         std::vector<double>& scores) {
+  GroupErrors errors;
+  const bool vsd = renderer != nullptr;
+  const double width_scale = kMspdReferenceWidth / image.width;
+  std::vector<cv::Mat> truth_depth;
+  const PinholeCamera camera = camera_of(image);
+  if (vsd) {
+    for (const TruthInstance* t : targets) truth_depth.push_back(renderer->depth(t->pose, camera));
+    errors.vsd.assign(settings.vsd.taus.size(), {});
+  }
+  for (std::size_t e = 0; e < kept; ++e) {
+    const EstimateInstance& estimate = *estimates[e];
+    scores.push_back(estimate.score);
+    std::vector<double> add, mssd, mspd;
+    std::vector<std::vector<double>> vsd_rows(errors.vsd.size());
+    cv::Mat estimate_depth;
+    if (vsd) estimate_depth = renderer->depth(estimate.pose, camera);
+    for (std::size_t g = 0; g < targets.size(); ++g) {
+      const Pose& gt = targets[g]->pose;
+      add.push_back(add_or_adds_error(model, estimate.pose, gt));
+      mssd.push_back(mssd_error(model, estimate.pose, gt));
+      mspd.push_back(mspd_error(model, estimate.pose, gt, image.K) * width_scale);
+      if (vsd) {
+        const std::vector<double> v =
+            vsd_errors(image.depth, estimate_depth, truth_depth[g], image.K, model.diameter(), settings.vsd);
+        for (std::size_t k = 0; k < v.size(); ++k) vsd_rows[k].push_back(v[k]);
+      }
+    }
+    errors.add.push_back(add);
+    errors.mssd.push_back(mssd);
+    errors.mspd.push_back(mspd);
+    for (std::size_t k = 0; k < vsd_rows.size(); ++k) errors.vsd[k].push_back(vsd_rows[k]);
+  }
+  return errors;
+}
+
 }  // namespace
 
 std::vector<int> match_poses(const std::vector<double>& scores, const std::vector<std::vector<double>>& errors,
@@ -181,43 +223,15 @@ void PoseRecallAccumulator::add_group(const PoseEvalImage& image, int obj_id,
   if (kept == 0) return;
 
   // Errors of each kept estimate against each target.
-  GroupErrors errors;
   const bool vsd = vsd_ && !image.depth.empty();
-  const double width_scale = kMspdReferenceWidth / image.width;
-  std::vector<cv::Mat> truth_depth;
   ModelDepthRenderer* renderer = nullptr;
-  const PinholeCamera camera = camera_of(image);
   if (vsd) {
     auto& slot = renderers_[obj_id];
     if (!slot) slot = std::make_unique<ModelDepthRenderer>(model.shared_mesh());
     renderer = slot.get();
-    for (const TruthInstance* t : targets) truth_depth.push_back(renderer->depth(t->pose, camera));
-    errors.vsd.assign(settings_.vsd.taus.size(), {});
   }
   std::vector<double> scores;
-  for (std::size_t e = 0; e < kept; ++e) {
-    const EstimateInstance& estimate = *estimates[e];
-    scores.push_back(estimate.score);
-    std::vector<double> add, mssd, mspd;
-    std::vector<std::vector<double>> vsd_rows(errors.vsd.size());
-    cv::Mat estimate_depth;
-    if (vsd) estimate_depth = renderer->depth(estimate.pose, camera);
-    for (std::size_t g = 0; g < targets.size(); ++g) {
-      const Pose& gt = targets[g]->pose;
-      add.push_back(add_or_adds_error(model, estimate.pose, gt));
-      mssd.push_back(mssd_error(model, estimate.pose, gt));
-      mspd.push_back(mspd_error(model, estimate.pose, gt, image.K) * width_scale);
-      if (vsd) {
-        const std::vector<double> v =
-            vsd_errors(image.depth, estimate_depth, truth_depth[g], image.K, model.diameter(), settings_.vsd);
-        for (std::size_t k = 0; k < v.size(); ++k) vsd_rows[k].push_back(v[k]);
-      }
-    }
-    errors.add.push_back(add);
-    errors.mssd.push_back(mssd);
-    errors.mspd.push_back(mspd);
-    for (std::size_t k = 0; k < vsd_rows.size(); ++k) errors.vsd[k].push_back(vsd_rows[k]);
-  }
+  const GroupErrors errors = group_errors(image, model, targets, estimates, kept, renderer, settings_, scores);
 
   // Matches per threshold, into the total and the object's counts.
   const std::vector<bool> all_valid(targets.size(), true);

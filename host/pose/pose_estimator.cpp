@@ -54,6 +54,89 @@ std::vector<Eigen::Vector3f> scene_points(const cv::Mat& depth, const cv::Rect& 
   return points;
 }
 
+// The model, box and images estimate() takes: anything else is refused before any work.
+void check_estimate_inputs(const PoseModel& model, const cv::Mat& image, const cv::Mat& depth,
+                           const cv::Rect& box) {
+  if (!model.mesh || !model.templates) throw std::invalid_argument("PoseEstimator: model without mesh or templates");
+  if (box.width <= 0 || box.height <= 0) throw InputError("box", "is empty");
+  const cv::Rect image_rect(cv::Point(), image.size());
+  if ((box & image_rect) != box) {
+    throw InputError("box", "(" + std::to_string(box.x) + ", " + std::to_string(box.y) + ", " +
+                                std::to_string(box.width) + " x " + std::to_string(box.height) +
+                                ") is not inside the " + std::to_string(image.cols) + " x " +
+                                std::to_string(image.rows) + " image");
+  }
+  if (depth.size() != image.size() || depth.type() != CV_32FC1) {
+    throw InputError("depth", "must be a float image of the image's size (" + std::to_string(image.cols) +
+                                  " x " + std::to_string(image.rows) + ")");
+  }
+}
+
+// Pixels measured well in front of the part's surface belong to something that hides it;
+// a hidden part may reach as far as the largest template the search allows
+// (max_area_ratio times the box). Their points' costs in `tensor` are capped.
+void cap_occluded_points(DcdTensor& tensor, const PoseModel& model, const cv::Mat& depth,
+                         const cv::Rect& box, const cv::Rect& region, double surface_depth,
+                         const PoseEstimatorParams& params) {
+  const cv::Rect reach = grow(box, std::sqrt(params.search.max_area_ratio), depth.size());
+  const cv::Mat nearer = depth(reach) < surface_depth - params.occluder_margin * model.mesh->diameter;
+  const cv::Mat hidden = nearer & (depth(reach) > 0.0f);
+  tensor.cap(hidden, reach.tl() - region.tl(), static_cast<float>(params.occluded_point_cost));
+}
+
+// A candidate after its refinement on the edges, with the template view it came from.
+struct RefinedCandidate {
+  Pose pose;
+  double edge_cost;
+  const EdgeView* view;
+};
+
+// Every candidate refined on the edges (unless the refinement is on the depth only), the
+// best edge fit first; the time it took is added to `refine_ms`.
+std::vector<RefinedCandidate> refine_candidates(const PoseModel& model,
+                                                const std::vector<PoseCandidate>& candidates,
+                                                const PinholeCamera& camera, const DcdTensor& tensor,
+                                                const cv::Rect& region,
+                                                const PoseEstimatorParams& params, double& refine_ms) {
+  std::vector<RefinedCandidate> refined;
+  for (const PoseCandidate& candidate : candidates) {
+    const EdgeView& view = model.templates->views[candidate.view];
+    const Clock::time_point start = Clock::now();
+    RefinedCandidate r{candidate.pose, candidate.cost, &view};
+    if (params.refinement != PoseRefinement::kDepthOnly) {
+      const DcdRefineResult result = refine_on_dcd(view.points, view.tangents, candidate.pose, camera, tensor,
+                                                   region.tl(), params.refine);
+      r.pose = result.pose;
+      r.edge_cost = result.final_cost;
+    }
+    refine_ms += ms_since(start);
+    refined.push_back(r);
+  }
+  std::stable_sort(refined.begin(), refined.end(), [](const RefinedCandidate& a, const RefinedCandidate& b) {
+    return a.edge_cost < b.edge_cost;
+  });
+  return refined;
+}
+
+// Half turns of a candidate about the model's axes join it: edges and a depth surface
+// seen from one side often fit a part and its turned twin about equally, and only the
+// complete fit (ICP, then the score) tells them apart.
+std::vector<RefinedCandidate> with_half_turns(const RefinedCandidate& r, const PoseModel& model,
+                                              const PoseEstimatorParams& params) {
+  std::vector<RefinedCandidate> out{r};
+  if (!params.try_half_turns || params.refinement == PoseRefinement::kEdgesOnly) return out;
+  const Eigen::Vector3d centre = model.mesh->bounds.center().cast<double>();
+  for (int axis = 0; axis < 3; ++axis) {
+    RefinedCandidate turned = r;
+    const Eigen::Matrix3d half = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    // Turn about the axis through the box centre, which stays where it was.
+    turned.pose.R = r.pose.R * half;
+    turned.pose.t = r.pose.t + r.pose.R * (centre - half * centre);
+    out.push_back(turned);
+  }
+  return out;
+}
+
 }  // namespace
 
 void PoseEstimatorParams::check() const {
@@ -176,19 +259,7 @@ PoseEstimator::~PoseEstimator() = default;
 PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& image, const cv::Mat& depth,
                                      const PinholeCamera& camera, const cv::Rect& box) {
   const PoseEstimatorParams& params = impl_->params;
-  if (!model.mesh || !model.templates) throw std::invalid_argument("PoseEstimator: model without mesh or templates");
-  if (box.width <= 0 || box.height <= 0) throw InputError("box", "is empty");
-  const cv::Rect image_rect(cv::Point(), image.size());
-  if ((box & image_rect) != box) {
-    throw InputError("box", "(" + std::to_string(box.x) + ", " + std::to_string(box.y) + ", " +
-                                std::to_string(box.width) + " x " + std::to_string(box.height) +
-                                ") is not inside the " + std::to_string(image.cols) + " x " +
-                                std::to_string(image.rows) + " image");
-  }
-  if (depth.size() != image.size() || depth.type() != CV_32FC1) {
-    throw InputError("depth", "must be a float image of the image's size (" + std::to_string(image.cols) +
-                                  " x " + std::to_string(image.rows) + ")");
-  }
+  check_estimate_inputs(model, image, depth, box);
   PoseEstimate estimate;
   estimate.obj_id = model.obj_id;
 
@@ -198,13 +269,7 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
   if (!(surface_depth > 0.0)) throw InputError("depth", "has no measured pixel in the box");
   DcdTensor tensor(detect_edges(image, region, params.dcd), params.dcd);
   if (params.occluder_margin > 0.0) {
-    // Pixels measured well in front of the part's surface belong to something that
-    // hides it; a hidden part may reach as far as the largest template the search
-    // allows (max_area_ratio times the box).
-    const cv::Rect reach = grow(box, std::sqrt(params.search.max_area_ratio), image.size());
-    const cv::Mat nearer = depth(reach) < surface_depth - params.occluder_margin * model.mesh->diameter;
-    const cv::Mat hidden = nearer & (depth(reach) > 0.0f);
-    tensor.cap(hidden, reach.tl() - region.tl(), static_cast<float>(params.occluded_point_cost));
+    cap_occluded_points(tensor, model, depth, box, region, surface_depth, params);
   }
   estimate.times.edges_ms = ms_since(start);
 
@@ -221,47 +286,10 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
   const double far = params.dcd.max_distance;
   // Every candidate refined on the edges; the best few by edge fit then fitted to the
   // depth and scored (ICP and the renders cost more than the refinement).
-  struct Refined {
-    Pose pose;
-    double edge_cost;
-    const EdgeView* view;
-  };
-  std::vector<Refined> refined;
-  for (const PoseCandidate& candidate : candidates) {
-    const EdgeView& view = model.templates->views[candidate.view];
-    start = Clock::now();
-    Refined r{candidate.pose, candidate.cost, &view};
-    if (params.refinement != PoseRefinement::kDepthOnly) {
-      const DcdRefineResult result = refine_on_dcd(view.points, view.tangents, candidate.pose, camera, tensor,
-                                                   region.tl(), params.refine);
-      r.pose = result.pose;
-      r.edge_cost = result.final_cost;
-    }
-    estimate.times.refine_ms += ms_since(start);
-    refined.push_back(r);
-  }
-  std::stable_sort(refined.begin(), refined.end(),
-                   [](const Refined& a, const Refined& b) { return a.edge_cost < b.edge_cost; });
-
-  // Half turns of a candidate about the model's axes join it: edges and a depth surface
-  // seen from one side often fit a part and its turned twin about equally, and only the
-  // complete fit (ICP, then the score) tells them apart.
-  auto with_half_turns = [&](const Refined& r) {
-    std::vector<Refined> out{r};
-    if (!params.try_half_turns || params.refinement == PoseRefinement::kEdgesOnly) return out;
-    const Eigen::Vector3d centre = model.mesh->bounds.center().cast<double>();
-    for (int axis = 0; axis < 3; ++axis) {
-      Refined turned = r;
-      const Eigen::Matrix3d half = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
-      // Turn about the axis through the box centre, which stays where it was.
-      turned.pose.R = r.pose.R * half;
-      turned.pose.t = r.pose.t + r.pose.R * (centre - half * centre);
-      out.push_back(turned);
-    }
-    return out;
-  };
+  const std::vector<RefinedCandidate> refined =
+      refine_candidates(model, candidates, camera, tensor, region, params, estimate.times.refine_ms);
   bool first = true;
-  auto fit_and_score = [&](const Refined& r) {
+  auto fit_and_score = [&](const RefinedCandidate& r) {
     Pose pose = r.pose;
     start = Clock::now();
     if (params.refinement != PoseRefinement::kEdgesOnly) {
@@ -288,7 +316,7 @@ PoseEstimate PoseEstimator::estimate(const PoseModel& model, const cv::Mat& imag
   const std::size_t scored = std::min<std::size_t>(refined.size(), params.scored_candidates);
   for (std::size_t i = 0; i < refined.size(); ++i) {
     if (i >= scored && estimate.score >= params.retry_below_score) break;
-    for (const Refined& r : with_half_turns(refined[i])) fit_and_score(r);
+    for (const RefinedCandidate& r : with_half_turns(refined[i], model, params)) fit_and_score(r);
   }
   return estimate;
 }

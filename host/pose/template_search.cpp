@@ -166,105 +166,156 @@ Pose pose_on_ray(const Eigen::Matrix3d& on_axis_rotation, const Eigen::Vector2d&
   return pose;
 }
 
+namespace {
+
+// A template's best fit so far: its mean cost with its origin at `origin` (pixels).
+struct TemplateFit {
+  double cost;
+  Eigen::Vector2d origin;
+  int view, in_plane;
+  double depth;
+  double step_x, step_y;  // spacing of the coarse grid it was found on
+};
+
+// By cost, then by view and rotation: a max-heap in this order holds the best fits.
+bool better_fit(const TemplateFit& a, const TemplateFit& b) {
+  if (a.cost != b.cost) return a.cost < b.cost;
+  return std::make_pair(a.view, a.in_plane) < std::make_pair(b.view, b.in_plane);
+}
+
+// The search of one part's templates over one box: a coarse grid, then the best fits
+// searched finely, then the distinct ones as candidates.
+class BoxSearch {
+ public:
+  BoxSearch(const PartTemplates& part, int in_plane_steps, const DcdTensor& tensor,
+            cv::Point tensor_origin, const PinholeCamera& camera, const cv::Rect& box,
+            const SearchParams& params)
+      : part_(part), in_plane_steps_(in_plane_steps), tensor_(tensor), compact_(tensor),
+        tensor_origin_(tensor_origin), camera_(camera), box_(box), params_(params) {}
+
+  // Every view and rotation on a coarse grid of positions (at most grid_positions per
+  // axis over the range where it covers the box). Only the best refined_templates of
+  // them go on, so a template may stop scoring once it cannot join them: the worst of
+  // the best so far bounds every sum (the result is the same as scoring all in full).
+  // The best fits come back as a max-heap (better_fit).
+  std::vector<TemplateFit> coarse(double surface_depth) const {
+    std::vector<TemplateFit> best;
+    const std::size_t keep = static_cast<std::size_t>(params_.refined_templates);
+    for (int v = 0; v < static_cast<int>(part_.views.size()); ++v) {
+      const EdgeView& view = part_.views[v];
+      const double depth = surface_depth - view.surface_depth_offset;
+      if (depth <= 0.0) continue;
+      const ProjectedView projected = project_view(view, depth, params_.coarse_points);
+      if (projected.angles.empty()) continue;
+      for (int k = 0; k < in_plane_steps_; ++k) {
+        const double bound = best.size() < keep ? 1e30 : best.front().cost;
+        TemplateFit here;
+        if (!coarse_fit(projected, v, k, depth, bound, here)) continue;
+        // `best` is a max-heap on (cost, view, rotation) holding the best `keep` so far.
+        best.push_back(here);
+        std::push_heap(best.begin(), best.end(), better_fit);
+        if (best.size() > keep) {
+          std::pop_heap(best.begin(), best.end(), better_fit);
+          best.pop_back();
+        }
+      }
+    }
+    return best;
+  }
+
+  // ... then the best of them searched around their position at position_step, best first.
+  void refine(std::vector<TemplateFit>& best) const {
+    std::sort_heap(best.begin(), best.end(), better_fit);
+    for (TemplateFit& b : best) {
+      const ProjectedView projected = project_view(part_.views[b.view], b.depth, params_.coarse_points);
+      const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * b.in_plane / in_plane_steps_, camera_, tensor_);
+      const Eigen::Vector2d centre = b.origin;
+      for (double du = -b.step_x / 2; du <= b.step_x / 2 + 1e-9; du += params_.position_step) {
+        for (double dv = -b.step_y / 2; dv <= b.step_y / 2 + 1e-9; dv += params_.position_step) {
+          const double cost = mean_cost(t, centre.x() + du, centre.y() + dv, compact_, tensor_origin_, b.cost);
+          if (cost < b.cost) {
+            b.cost = cost;
+            b.origin = centre + Eigen::Vector2d(du, dv);
+          }
+        }
+      }
+    }
+    std::sort(best.begin(), best.end(), better_fit);
+  }
+
+  // Neighbouring views and rotations of one good fit score alike: keep only candidates
+  // that differ from those kept by a turn or a shift, so the refinement starts from
+  // distinct hypotheses.
+  std::vector<PoseCandidate> distinct_candidates(const std::vector<TemplateFit>& best) const {
+    std::vector<PoseCandidate> candidates;
+    for (const TemplateFit& b : best) {
+      if (static_cast<int>(candidates.size()) >= params_.candidates) break;
+      const Eigen::Matrix3d rotation = in_plane_rotation(b.in_plane, in_plane_steps_) * part_.views[b.view].rotation;
+      PoseCandidate c;
+      c.pose = pose_on_ray(rotation, b.origin, b.depth, camera_);
+      c.cost = b.cost;
+      c.view = b.view;
+      c.in_plane = b.in_plane;
+      bool distinct = true;
+      for (const PoseCandidate& kept : candidates) {
+        const double turn = std::acos(std::clamp(((kept.pose.R.transpose() * c.pose.R).trace() - 1.0) / 2.0, -1.0, 1.0));
+        const double shift = (camera_.project(kept.pose.t) - camera_.project(c.pose.t)).norm();
+        if (turn < params_.distinct_degrees * M_PI / 180.0 && shift < params_.distinct_pixels) distinct = false;
+      }
+      if (distinct) candidates.push_back(c);
+    }
+    return candidates;
+  }
+
+ private:
+  // The best fit of view `v` turned by in-plane step `k` on the coarse grid, if it costs
+  // less than `bound`; false when it does not, or when the template cannot match the box.
+  bool coarse_fit(const ProjectedView& projected, int v, int k, double depth, double bound,
+                  TemplateFit& here) const {
+    const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * k / in_plane_steps_, camera_, tensor_);
+    const Eigen::Vector2d size = t.bounds.sizes();
+    if (size.x() < params_.min_cover * box_.width || size.y() < params_.min_cover * box_.height) return false;
+    if (size.x() * size.y() > params_.max_area_ratio * box_.area()) return false;
+    const double slack_x = std::max(3.0, 0.1 * box_.width), slack_y = std::max(3.0, 0.1 * box_.height);
+    const std::vector<double> us = positions(t.bounds.min().x(), t.bounds.max().x(), box_.x, box_.x + box_.width - 1, slack_x, params_);
+    const std::vector<double> vs = positions(t.bounds.min().y(), t.bounds.max().y(), box_.y, box_.y + box_.height - 1, slack_y, params_);
+    // The origin is set with the first fit under `bound` (none: `here` is not used).
+    here = {bound, Eigen::Vector2d::Zero(), v, k, depth, us.size() > 1 ? us[1] - us[0] : 0.0, vs.size() > 1 ? vs[1] - vs[0] : 0.0};
+    bool found = false;
+    for (double u0 : us) {
+      for (double v0 : vs) {
+        const double cost = mean_cost(t, u0, v0, compact_, tensor_origin_, here.cost);
+        if (cost < here.cost) {
+          here = {cost, {u0, v0}, v, k, depth, here.step_x, here.step_y};
+          found = true;
+        }
+      }
+    }
+    return found;
+  }
+
+  const PartTemplates& part_;
+  const int in_plane_steps_;
+  const DcdTensor& tensor_;
+  const CompactTensor compact_;
+  const cv::Point tensor_origin_;
+  const PinholeCamera& camera_;
+  const cv::Rect& box_;
+  const SearchParams& params_;
+};
+
+}  // namespace
+
 std::vector<PoseCandidate> search_templates(const PartTemplates& part, int in_plane_steps,
                                             const DcdTensor& tensor, cv::Point tensor_origin,
                                             const PinholeCamera& camera, const cv::Rect& box,
                                             double surface_depth, const SearchParams& params) {
   params.check();
   if (box.width <= 0 || box.height <= 0) throw InputError("box", "is empty");
-  const CompactTensor compact(tensor);
-  const double slack_x = std::max(3.0, 0.1 * box.width), slack_y = std::max(3.0, 0.1 * box.height);
-
-  struct Best {
-    double cost;
-    Eigen::Vector2d origin;
-    int view, in_plane;
-    double depth;
-    double step_x, step_y;  // spacing of the coarse grid it was found on
-  };
-  // Every view and rotation on a coarse grid of positions (at most grid_positions per
-  // axis over the range where it covers the box). Only the best refined_templates of
-  // them go on, so a template may stop scoring once it cannot join them: the worst of
-  // the best so far bounds every sum (the result is the same as scoring all in full).
-  std::vector<Best> best;
-  auto worse = [](const Best& a, const Best& b) {
-    if (a.cost != b.cost) return a.cost < b.cost;
-    return std::make_pair(a.view, a.in_plane) < std::make_pair(b.view, b.in_plane);
-  };
-  const std::size_t keep = static_cast<std::size_t>(params.refined_templates);
-  for (int v = 0; v < static_cast<int>(part.views.size()); ++v) {
-    const EdgeView& view = part.views[v];
-    const double depth = surface_depth - view.surface_depth_offset;
-    if (depth <= 0.0) continue;
-    const ProjectedView projected = project_view(view, depth, params.coarse_points);
-    if (projected.angles.empty()) continue;
-    for (int k = 0; k < in_plane_steps; ++k) {
-      const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * k / in_plane_steps, camera, tensor);
-      const Eigen::Vector2d size = t.bounds.sizes();
-      if (size.x() < params.min_cover * box.width || size.y() < params.min_cover * box.height) continue;
-      if (size.x() * size.y() > params.max_area_ratio * box.area()) continue;
-      const std::vector<double> us = positions(t.bounds.min().x(), t.bounds.max().x(), box.x, box.x + box.width - 1, slack_x, params);
-      const std::vector<double> vs = positions(t.bounds.min().y(), t.bounds.max().y(), box.y, box.y + box.height - 1, slack_y, params);
-      const double bound = best.size() < keep ? 1e30 : best.front().cost;
-      Best here{bound, {}, v, k, depth, us.size() > 1 ? us[1] - us[0] : 0.0, vs.size() > 1 ? vs[1] - vs[0] : 0.0};
-      bool found = false;
-      for (double u0 : us) {
-        for (double v0 : vs) {
-          const double cost = mean_cost(t, u0, v0, compact, tensor_origin, here.cost);
-          if (cost < here.cost) {
-            here = {cost, {u0, v0}, v, k, depth, here.step_x, here.step_y};
-            found = true;
-          }
-        }
-      }
-      if (!found) continue;
-      // `best` is a max-heap on (cost, view, rotation) holding the best `keep` so far.
-      best.push_back(here);
-      std::push_heap(best.begin(), best.end(), worse);
-      if (best.size() > keep) {
-        std::pop_heap(best.begin(), best.end(), worse);
-        best.pop_back();
-      }
-    }
-  }
-  // ... then the best of them searched around their position at position_step.
-  std::sort_heap(best.begin(), best.end(), worse);
-  for (Best& b : best) {
-    const ProjectedView projected = project_view(part.views[b.view], b.depth, params.coarse_points);
-    const ProjectedTemplate t = turn_view(projected, 2.0 * M_PI * b.in_plane / in_plane_steps, camera, tensor);
-    const Eigen::Vector2d centre = b.origin;
-    for (double du = -b.step_x / 2; du <= b.step_x / 2 + 1e-9; du += params.position_step) {
-      for (double dv = -b.step_y / 2; dv <= b.step_y / 2 + 1e-9; dv += params.position_step) {
-        const double cost = mean_cost(t, centre.x() + du, centre.y() + dv, compact, tensor_origin, b.cost);
-        if (cost < b.cost) {
-          b.cost = cost;
-          b.origin = centre + Eigen::Vector2d(du, dv);
-        }
-      }
-    }
-  }
-  std::sort(best.begin(), best.end(), worse);
-  // Neighbouring views and rotations of one good fit score alike: keep only candidates
-  // that differ from those kept by a turn or a shift, so the refinement starts from
-  // distinct hypotheses.
-  std::vector<PoseCandidate> candidates;
-  for (const Best& b : best) {
-    if (static_cast<int>(candidates.size()) >= params.candidates) break;
-    const Eigen::Matrix3d rotation = in_plane_rotation(b.in_plane, in_plane_steps) * part.views[b.view].rotation;
-    PoseCandidate c;
-    c.pose = pose_on_ray(rotation, b.origin, b.depth, camera);
-    c.cost = b.cost;
-    c.view = b.view;
-    c.in_plane = b.in_plane;
-    bool distinct = true;
-    for (const PoseCandidate& kept : candidates) {
-      const double turn = std::acos(std::clamp(((kept.pose.R.transpose() * c.pose.R).trace() - 1.0) / 2.0, -1.0, 1.0));
-      const double shift = (camera.project(kept.pose.t) - camera.project(c.pose.t)).norm();
-      if (turn < params.distinct_degrees * M_PI / 180.0 && shift < params.distinct_pixels) distinct = false;
-    }
-    if (distinct) candidates.push_back(c);
-  }
-  return candidates;
+  const BoxSearch search(part, in_plane_steps, tensor, tensor_origin, camera, box, params);
+  std::vector<TemplateFit> best = search.coarse(surface_depth);
+  search.refine(best);
+  return search.distinct_candidates(best);
 }
 
 }  // namespace flexsight

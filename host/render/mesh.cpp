@@ -344,9 +344,7 @@ Mesh load_mesh(const std::string& path, const MeshOptions& options) {
   // Our own readers, not Assimp (mesh_files.h says why). An STL's normals are one per
   // facet: no vertex normals, so the crease-angle ones are computed as for a file
   // without any.
-  const mesh_files::RawMesh raw = ext == ".stl"   ? mesh_files::read_stl(path, bytes)
-                                  : ext == ".ply" ? mesh_files::read_ply(path, bytes)
-                                                  : mesh_files::read_obj(path, bytes);
+  const mesh_files::RawMesh raw = mesh_files::read_mesh(path, bytes, ext);
   const bool use_file_normals =
       !raw.corner_normals.empty() && raw.corner_normals.size() == 3 * raw.triangles.size();
   return build_mesh(path, raw.positions, raw.triangles, use_file_normals ? &raw.corner_normals : nullptr,

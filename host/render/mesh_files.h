@@ -25,9 +25,12 @@ struct RawMesh {
   std::vector<Eigen::Vector3f> corner_normals;
 };
 
-// `bytes` is the file's content, `path` names it in messages.
+// `bytes` is the file's content, `path` names it in messages. Each format's reader is in
+// its own file: mesh_stl.cpp, mesh_ply.cpp, mesh_obj.cpp (what they share: mesh_file_text.h).
 RawMesh read_stl(const std::string& path, const std::string& bytes);
 RawMesh read_ply(const std::string& path, const std::string& bytes);
 RawMesh read_obj(const std::string& path, const std::string& bytes);
+// The reader of `extension` (lower case: .stl, .ply or .obj); any other is an InputError.
+RawMesh read_mesh(const std::string& path, const std::string& bytes, const std::string& extension);
 
 }  // namespace flexsight::mesh_files

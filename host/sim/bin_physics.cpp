@@ -58,6 +58,188 @@ Eigen::Quaterniond random_rotation(synth_detail::SynthRandom& random) {
                             a * std::cos(2 * M_PI * u2), b * std::sin(2 * M_PI * u3));
 }
 
+// The Bullet world of one bin: the floor and walls as static bodies, then the dropped
+// parts' bodies in drop order (body first_part_body_ + drop index).
+class BinWorld {
+ public:
+  BinWorld(const std::vector<PartHull>& hulls, const BinGeometry& bin, const PhysicsSettings& settings)
+      : hulls_(hulls),
+        bin_(bin),
+        settings_(settings),
+        dispatcher_(&configuration_),
+        world_(&dispatcher_, &broadphase_, &solver_, &configuration_),
+        part_shapes_(hulls.size(), nullptr) {
+    world_.setGravity(btVector3(0, 0, btScalar(-9810.0 * kMetresPerMm)));
+    world_.getSolverInfo().m_numIterations = settings.solver_iterations;
+    add_bin();
+    first_part_body_ = bodies_.size();
+  }
+
+  // Drops `part` above the walls and the pile, clear of both by a margin, at a random
+  // point and orientation.
+  void drop(int part, synth_detail::SynthRandom& random) {
+    const PartHull& hull = hulls_[part];
+    const double L = bin_.length_mm, W = bin_.width_mm;
+    double top = bin_.wall_height_mm;
+    for (std::size_t b = first_part_body_; b < bodies_.size(); ++b) {
+      btVector3 lo, hi;
+      bodies_[b]->getAabb(lo, hi);
+      top = std::max(top, double(hi.z()) / kMetresPerMm);
+    }
+    const double rx = std::max(0.0, 0.5 * L - hull.radius_mm);
+    const double ry = std::max(0.0, 0.5 * W - hull.radius_mm);
+    const Eigen::Vector3d position(random.uniform(-rx, rx), random.uniform(-ry, ry),
+                                   top + hull.radius_mm + 20.0);
+    const Eigen::Quaterniond rotation = random_rotation(random);
+    btTransform transform;
+    transform.setOrigin(to_bt(kMetresPerMm * position));
+    transform.setRotation(btQuaternion(btScalar(rotation.x()), btScalar(rotation.y()),
+                                       btScalar(rotation.z()), btScalar(rotation.w())));
+    const double mass = settings_.density_kg_mm3 * hull.volume_mm3;
+    btRigidBody* body = add_body(shape_of(part), mass, transform);
+    // Continuous collision for fast, thin parts: a swept sphere inside the part.
+    body->setCcdMotionThreshold(btScalar(0.25 * hull.radius_mm * kMetresPerMm));
+    body->setCcdSweptSphereRadius(btScalar(0.2 * hull.radius_mm * kMetresPerMm));
+  }
+
+  void step() {
+    // One fixed step, no sub-stepping left to Bullet's clock.
+    world_.stepSimulation(btScalar(settings_.time_step_s), 0);
+    ++steps_;
+  }
+
+  // Steps until every part is at rest or `max_steps` have passed; true: at rest.
+  bool settle(int max_steps) {
+    int calm_steps = 0;
+    bool at_rest = false;
+    for (int s = 0; s < max_steps && !at_rest; ++s) {
+      step();
+      at_rest = rest_check(calm_steps);
+    }
+    return at_rest;
+  }
+
+  // The pose of the part dropped `i`-th, `part` its index into the hulls.
+  Pose pose_of(std::size_t i, int part) const {
+    const btTransform& transform = bodies_[first_part_body_ + i]->getWorldTransform();
+    const btQuaternion q = transform.getRotation();
+    const btVector3 origin = transform.getOrigin();
+    Pose pose;
+    pose.R = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+    // The body's origin is the centre of mass: model point x sits at R (x - com) + centre.
+    pose.t = Eigen::Vector3d(origin.x(), origin.y(), origin.z()) / kMetresPerMm -
+             pose.R * hulls_[part].centre_of_mass;
+    return pose;
+  }
+
+  // Out of the bin: the centre of mass outside the walls or below the floor, or the part
+  // hanging over a wall's top by more than half the wall.
+  bool left_bin(std::size_t i, int part) const {
+    const double L = bin_.length_mm, W = bin_.width_mm;
+    const Pose pose = pose_of(i, part);
+    const PartHull& hull = hulls_[part];
+    const Eigen::Vector3d centre = pose.R * hull.centre_of_mass + pose.t;
+    if (std::abs(centre.x()) > 0.5 * L || std::abs(centre.y()) > 0.5 * W || centre.z() < 0.0) return true;
+    const double reach = 0.5 * bin_.wall_thickness_mm;
+    for (const Eigen::Vector3f& p : hull.points) {
+      const Eigen::Vector3d w = centre + pose.R * p.cast<double>();
+      if (std::abs(w.x()) > 0.5 * L + reach || std::abs(w.y()) > 0.5 * W + reach) return true;
+    }
+    return false;
+  }
+
+  void remove_part(std::size_t i) { world_.removeRigidBody(bodies_[first_part_body_ + i].get()); }
+
+  // Takes the bin's bodies and the parts `in_world` (by drop index) out of the world.
+  void remove_all(const std::vector<bool>& in_world) {
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      if (b < first_part_body_ || in_world[b - first_part_body_]) world_.removeRigidBody(bodies_[b].get());
+    }
+  }
+
+  int steps() const { return steps_; }
+
+ private:
+  btRigidBody* add_body(btCollisionShape* shape, double mass, const btTransform& transform) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape, inertia);
+    info.m_startWorldTransform = transform;
+    info.m_friction = btScalar(settings_.friction);
+    info.m_restitution = btScalar(settings_.restitution);
+    info.m_linearDamping = 0.05f;
+    info.m_angularDamping = 0.1f;
+    // Bullet's rolling friction is a lever arm (a length): without it a cylinder rolls on
+    // for ever.
+    info.m_rollingFriction = btScalar(settings_.rolling_friction_mm * kMetresPerMm);
+    info.m_spinningFriction = btScalar(settings_.rolling_friction_mm * kMetresPerMm);
+    bodies_.push_back(std::make_unique<btRigidBody>(info));
+    world_.addRigidBody(bodies_.back().get());
+    return bodies_.back().get();
+  }
+
+  void add_box(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& size_mm) {
+    shapes_.push_back(std::make_unique<btBoxShape>(to_bt(0.5 * kMetresPerMm * size_mm)));
+    btTransform transform;
+    transform.setIdentity();
+    transform.setOrigin(to_bt(kMetresPerMm * centre_mm));
+    add_body(shapes_.back().get(), 0.0, transform);
+  }
+
+  // The bin: floor and four walls as static boxes (inner faces where the bin's are).
+  void add_bin() {
+    const double L = bin_.length_mm, W = bin_.width_mm, H = bin_.wall_height_mm;
+    const double T = bin_.wall_thickness_mm + kStaticReserveMm;
+    const double F = bin_.floor_thickness_mm + kStaticReserveMm;
+    add_box({0, 0, -0.5 * F}, {L + 2 * T, W + 2 * T, F});
+    add_box({0.5 * (L + T), 0, 0.5 * H}, {T, W + 2 * T, H});
+    add_box({-0.5 * (L + T), 0, 0.5 * H}, {T, W + 2 * T, H});
+    add_box({0, 0.5 * (W + T), 0.5 * H}, {L, T, H});
+    add_box({0, -0.5 * (W + T), 0.5 * H}, {L, T, H});
+  }
+
+  // One shape per part model, shared by its copies.
+  btConvexHullShape* shape_of(int part) {
+    if (part_shapes_[part] == nullptr) {
+      auto shape = std::make_unique<btConvexHullShape>();
+      for (const Eigen::Vector3f& p : hulls_[part].points) {
+        shape->addPoint(to_bt(kMetresPerMm * p.cast<double>()), false);
+      }
+      shape->recalcLocalAabb();
+      shape->setMargin(btScalar(hulls_[part].margin_mm * kMetresPerMm));
+      part_shapes_[part] = shape.get();
+      shapes_.push_back(std::move(shape));
+    }
+    return part_shapes_[part];
+  }
+
+  // Counts the steps in a row with every part slower than the rest thresholds.
+  bool rest_check(int& calm_steps) const {
+    bool calm = true;
+    for (std::size_t b = first_part_body_; b < bodies_.size() && calm; ++b) {
+      if (!bodies_[b]->isInWorld()) continue;
+      calm = bodies_[b]->getLinearVelocity().length() < settings_.rest_linear_mm_s * kMetresPerMm &&
+             bodies_[b]->getAngularVelocity().length() < settings_.rest_angular_rad_s;
+    }
+    calm_steps = calm ? calm_steps + 1 : 0;
+    return calm_steps >= settings_.rest_steps;
+  }
+
+  const std::vector<PartHull>& hulls_;
+  const BinGeometry& bin_;
+  const PhysicsSettings& settings_;
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_;
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  btDiscreteDynamicsWorld world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  std::vector<btConvexHullShape*> part_shapes_;
+  std::size_t first_part_body_ = 0;
+  int steps_ = 0;
+};
+
 }  // namespace
 
 PartHull make_part_hull(const Mesh& mesh) {
@@ -131,152 +313,24 @@ PhysicsResult drop_parts(const std::vector<PartHull>& hulls, const std::vector<i
                          const BinGeometry& bin, const PhysicsSettings& settings,
                          synth_detail::SynthRandom random) {
   // A fresh world per bin: no state (solver seed, caches, pair order) carries over.
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-  world.setGravity(btVector3(0, 0, btScalar(-9810.0 * kMetresPerMm)));
-  world.getSolverInfo().m_numIterations = settings.solver_iterations;
-
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
-  const auto add_body = [&](btCollisionShape* shape, double mass, const btTransform& transform) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape, inertia);
-    info.m_startWorldTransform = transform;
-    info.m_friction = btScalar(settings.friction);
-    info.m_restitution = btScalar(settings.restitution);
-    info.m_linearDamping = 0.05f;
-    info.m_angularDamping = 0.1f;
-    // Bullet's rolling friction is a lever arm (a length): without it a cylinder rolls on
-    // for ever.
-    info.m_rollingFriction = btScalar(settings.rolling_friction_mm * kMetresPerMm);
-    info.m_spinningFriction = btScalar(settings.rolling_friction_mm * kMetresPerMm);
-    bodies.push_back(std::make_unique<btRigidBody>(info));
-    world.addRigidBody(bodies.back().get());
-    return bodies.back().get();
-  };
-
-  // The bin: floor and four walls as static boxes (inner faces where the bin's are).
-  const double L = bin.length_mm, W = bin.width_mm, H = bin.wall_height_mm;
-  const double T = bin.wall_thickness_mm + kStaticReserveMm;
-  const auto add_box = [&](const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& size_mm) {
-    shapes.push_back(std::make_unique<btBoxShape>(to_bt(0.5 * kMetresPerMm * size_mm)));
-    btTransform transform;
-    transform.setIdentity();
-    transform.setOrigin(to_bt(kMetresPerMm * centre_mm));
-    add_body(shapes.back().get(), 0.0, transform);
-  };
-  const double F = bin.floor_thickness_mm + kStaticReserveMm;
-  add_box({0, 0, -0.5 * F}, {L + 2 * T, W + 2 * T, F});
-  add_box({0.5 * (L + T), 0, 0.5 * H}, {T, W + 2 * T, H});
-  add_box({-0.5 * (L + T), 0, 0.5 * H}, {T, W + 2 * T, H});
-  add_box({0, 0.5 * (W + T), 0.5 * H}, {L, T, H});
-  add_box({0, -0.5 * (W + T), 0.5 * H}, {L, T, H});
-  const std::size_t first_part_body = bodies.size();
-
-  // One shape per part model, shared by its copies.
-  std::vector<btConvexHullShape*> part_shapes(hulls.size(), nullptr);
-  const auto shape_of = [&](int part) {
-    if (part_shapes[part] == nullptr) {
-      auto shape = std::make_unique<btConvexHullShape>();
-      for (const Eigen::Vector3f& p : hulls[part].points) {
-        shape->addPoint(to_bt(kMetresPerMm * p.cast<double>()), false);
-      }
-      shape->recalcLocalAabb();
-      shape->setMargin(btScalar(hulls[part].margin_mm * kMetresPerMm));
-      part_shapes[part] = shape.get();
-      shapes.push_back(std::move(shape));
-    }
-    return part_shapes[part];
-  };
-
+  BinWorld world(hulls, bin, settings);
   PhysicsResult result;
-  const auto rest_check = [&](int& calm_steps) {
-    bool calm = true;
-    for (std::size_t b = first_part_body; b < bodies.size() && calm; ++b) {
-      if (!bodies[b]->isInWorld()) continue;
-      calm = bodies[b]->getLinearVelocity().length() < settings.rest_linear_mm_s * kMetresPerMm &&
-             bodies[b]->getAngularVelocity().length() < settings.rest_angular_rad_s;
-    }
-    calm_steps = calm ? calm_steps + 1 : 0;
-    return calm_steps >= settings.rest_steps;
-  };
-  const auto step = [&]() {
-    // One fixed step, no sub-stepping left to Bullet's clock.
-    world.stepSimulation(btScalar(settings.time_step_s), 0);
-    ++result.steps;
-  };
-
   const int drop_steps = std::max(1, int(std::lround(settings.drop_interval_s / settings.time_step_s)));
   for (int part : order) {
-    const PartHull& hull = hulls[part];
-    // Above the walls and the pile, clear of both by a margin.
-    double top = H;
-    for (std::size_t b = first_part_body; b < bodies.size(); ++b) {
-      btVector3 lo, hi;
-      bodies[b]->getAabb(lo, hi);
-      top = std::max(top, double(hi.z()) / kMetresPerMm);
-    }
-    const double rx = std::max(0.0, 0.5 * L - hull.radius_mm);
-    const double ry = std::max(0.0, 0.5 * W - hull.radius_mm);
-    const Eigen::Vector3d position(random.uniform(-rx, rx), random.uniform(-ry, ry),
-                                   top + hull.radius_mm + 20.0);
-    const Eigen::Quaterniond rotation = random_rotation(random);
-    btTransform transform;
-    transform.setOrigin(to_bt(kMetresPerMm * position));
-    transform.setRotation(btQuaternion(btScalar(rotation.x()), btScalar(rotation.y()),
-                                       btScalar(rotation.z()), btScalar(rotation.w())));
-    const double mass = settings.density_kg_mm3 * hull.volume_mm3;
-    btRigidBody* body = add_body(shape_of(part), mass, transform);
-    // Continuous collision for fast, thin parts: a swept sphere inside the part.
-    body->setCcdMotionThreshold(btScalar(0.25 * hull.radius_mm * kMetresPerMm));
-    body->setCcdSweptSphereRadius(btScalar(0.2 * hull.radius_mm * kMetresPerMm));
+    world.drop(part, random);
     ++result.dropped;
-    for (int s = 0; s < drop_steps; ++s) step();
+    for (int s = 0; s < drop_steps; ++s) world.step();
   }
   // The parts still in the world, by drop index (a removed part's body is taken out).
   std::vector<bool> in_world(order.size(), true);
-  const auto pose_of = [&](std::size_t i) {
-    const btTransform& transform = bodies[first_part_body + i]->getWorldTransform();
-    const btQuaternion q = transform.getRotation();
-    const btVector3 origin = transform.getOrigin();
-    Pose pose;
-    pose.R = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-    // The body's origin is the centre of mass: model point x sits at R (x - com) + centre.
-    pose.t = Eigen::Vector3d(origin.x(), origin.y(), origin.z()) / kMetresPerMm -
-             pose.R * hulls[order[i]].centre_of_mass;
-    return pose;
-  };
-  // Out of the bin: the centre of mass outside the walls or below the floor, or the part
-  // hanging over a wall's top by more than half the wall.
-  const auto left_bin = [&](std::size_t i) {
-    const Pose pose = pose_of(i);
-    const PartHull& hull = hulls[order[i]];
-    const Eigen::Vector3d centre = pose.R * hull.centre_of_mass + pose.t;
-    if (std::abs(centre.x()) > 0.5 * L || std::abs(centre.y()) > 0.5 * W || centre.z() < 0.0) return true;
-    const double reach = 0.5 * bin.wall_thickness_mm;
-    for (const Eigen::Vector3f& p : hull.points) {
-      const Eigen::Vector3d w = centre + pose.R * p.cast<double>();
-      if (std::abs(w.x()) > 0.5 * L + reach || std::abs(w.y()) > 0.5 * W + reach) return true;
-    }
-    return false;
-  };
   // Settle; take out the parts that left the bin; settle again what leaned on them.
   const int max_steps = int(std::lround(settings.max_settle_s / settings.time_step_s));
   for (int round = 0; round < 3; ++round) {
-    int calm_steps = 0;
-    result.at_rest = false;
-    for (int s = 0; s < max_steps && !result.at_rest; ++s) {
-      step();
-      result.at_rest = rest_check(calm_steps);
-    }
+    result.at_rest = world.settle(max_steps);
     bool removed = false;
     for (std::size_t i = 0; i < order.size(); ++i) {
-      if (!in_world[i] || !left_bin(i)) continue;
-      world.removeRigidBody(bodies[first_part_body + i].get());
+      if (!in_world[i] || !world.left_bin(i, order[i])) continue;
+      world.remove_part(i);
       in_world[i] = false;
       ++result.removed;
       removed = true;
@@ -285,11 +339,10 @@ PhysicsResult drop_parts(const std::vector<PartHull>& hulls, const std::vector<i
   }
 
   for (std::size_t i = 0; i < order.size(); ++i) {
-    if (in_world[i]) result.parts.push_back({order[i], pose_of(i)});
+    if (in_world[i]) result.parts.push_back({order[i], world.pose_of(i, order[i])});
   }
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    if (b < first_part_body || in_world[b - first_part_body]) world.removeRigidBody(bodies[b].get());
-  }
+  result.steps = world.steps();
+  world.remove_all(in_world);
   return result;
 }
 

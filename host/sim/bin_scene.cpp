@@ -153,6 +153,40 @@ cv::Mat to_8bit(const cv::Mat& radiance, double noise_sigma, std::uint64_t key) 
   return rgb;
 }
 
+// The scene of a bin: the resting parts first (instance ids 0..n-1, the BOP gt ids), each
+// a grey drawn from `look`, then bin and table. `parts` gets the parts, `world_poses` the
+// world pose of every instance.
+void compose_bin_scene(const PhysicsResult& physics, const PartLibrary& library,
+                       const std::shared_ptr<const Mesh>& bin_mesh,
+                       const std::shared_ptr<const Mesh>& table_mesh, SynthRandom& look,
+                       RenderScene& scene, std::vector<BinPart>& parts, std::vector<Pose>& world_poses) {
+  std::vector<int> mesh_of_part(library.size(), -1);
+  for (const RestingPart& resting : physics.parts) {
+    if (mesh_of_part[resting.part] < 0) mesh_of_part[resting.part] = scene.add_mesh(library.part(resting.part).mesh);
+    BinPart part;
+    part.part = resting.part;
+    part.obj_id = library.part(resting.part).obj_id;
+    part.world = resting.world;
+    // Dark to light grey plastic.
+    part.albedo = Eigen::Vector3f::Constant(float(look.uniform(0.12, 0.75)));
+    Material material;
+    material.albedo = part.albedo;
+    scene.add_instance(mesh_of_part[resting.part], Pose{}, material);
+    world_poses.push_back(part.world);
+    parts.push_back(part);
+  }
+  Material bin_material;
+  bin_material.albedo = Eigen::Vector3f::Constant(0.45f);
+  bin_material.specular = 0.1f;
+  scene.add_instance(scene.add_mesh(bin_mesh), Pose{}, bin_material);
+  world_poses.push_back(Pose{});
+  Material table_material;
+  table_material.albedo = Eigen::Vector3f(0.30f, 0.29f, 0.27f);
+  table_material.specular = 0.05f;
+  scene.add_instance(scene.add_mesh(table_mesh), Pose{}, table_material);
+  world_poses.push_back(Pose{});
+}
+
 }  // namespace
 
 cv::Mat disparity_from_depth(const StereoRig& rig, const cv::Mat& depth) {
@@ -219,32 +253,8 @@ BinViews BinSimulator::simulate(std::uint32_t seed, std::int64_t index) const {
   // The scene: parts first (instance ids 0..n-1, the BOP gt ids), then bin and table.
   SynthRandom look(seed, index, kStreamLook);
   RenderScene scene;
-  std::vector<int> mesh_of_part(parts_.size(), -1);
   std::vector<Pose> world_poses;
-  for (const RestingPart& resting : views.physics.parts) {
-    if (mesh_of_part[resting.part] < 0) mesh_of_part[resting.part] = scene.add_mesh(parts_.part(resting.part).mesh);
-    BinPart part;
-    part.part = resting.part;
-    part.obj_id = parts_.part(resting.part).obj_id;
-    part.world = resting.world;
-    // Dark to light grey plastic.
-    part.albedo = Eigen::Vector3f::Constant(float(look.uniform(0.12, 0.75)));
-    Material material;
-    material.albedo = part.albedo;
-    scene.add_instance(mesh_of_part[resting.part], Pose{}, material);
-    world_poses.push_back(part.world);
-    views.parts.push_back(part);
-  }
-  Material bin_material;
-  bin_material.albedo = Eigen::Vector3f::Constant(0.45f);
-  bin_material.specular = 0.1f;
-  scene.add_instance(scene.add_mesh(bin_mesh_), Pose{}, bin_material);
-  world_poses.push_back(Pose{});
-  Material table_material;
-  table_material.albedo = Eigen::Vector3f(0.30f, 0.29f, 0.27f);
-  table_material.specular = 0.05f;
-  scene.add_instance(scene.add_mesh(table_mesh_), Pose{}, table_material);
-  world_poses.push_back(Pose{});
+  compose_bin_scene(views.physics, parts_, bin_mesh_, table_mesh_, look, scene, views.parts, world_poses);
 
   const std::uint32_t shading_seed = static_cast<std::uint32_t>(SynthRandom(seed, index, kStreamLook + 0x10).next_u64());
   const View right = render_view(scene, world_poses, rig_, true, *this, shading_seed);

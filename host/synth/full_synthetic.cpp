@@ -99,6 +99,49 @@ cv::Mat amodal_mask(const AmodalPatch& patch, const cv::Size& size, const Augmen
   return mask;
 }
 
+// The image and its annotations: the flips first (reflections: the poses are stored
+// reflected, see annotated_image.h), then every annotation from the final masks. `rgb`
+// and `images` are flipped in place.
+AnnotatedImage annotated_image(const FullSyntheticSettings& settings, const PartLibrary& parts,
+                               const RenderScene& scene, const Placement& placement,
+                               const PinholeCamera& camera, const Augmentation& augmentation,
+                               std::int64_t image_index, cv::Mat& rgb, RaycastImages& images) {
+  flip_image(rgb, augmentation);
+  flip_image(images.depth, augmentation);
+  flip_image(images.instance, augmentation);
+  const Eigen::Matrix3d F = Eigen::Vector3d(augmentation.flip_horizontal ? -1.0 : 1.0,
+                                            augmentation.flip_vertical ? -1.0 : 1.0, 1.0)
+                                .asDiagonal();
+  const cv::Size size(camera.width, camera.height);
+  AnnotatedImage image;
+  image.im_id = image_index >= 0 && image_index <= INT_MAX ? static_cast<int>(image_index) : 0;
+  image.rgb = rgb;
+  if (settings.store_depth) {
+    image.depth = images.depth.clone();
+    apply_stereo_depth_noise(image.depth, camera.fx, settings.depth_noise,
+                             augmentation.noise_key ^ 0xD3E7B0A5ULL);
+  }
+  image.camera.K << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0;
+  image.flipped_horizontally = augmentation.flip_horizontal;
+  image.flipped_vertically = augmentation.flip_vertical;
+  for (const PlacedPart& placed : placement.parts) {
+    const Pose& pose = scene.instance(placed.instance).pose;
+    PartAnnotation part;
+    part.obj_id = parts.part(placed.part).obj_id;
+    part.cam_R_m2c = F * pose.R;
+    part.cam_t_m2c = F * pose.t;
+    part.mask = amodal_mask(placed.amodal, size, augmentation);
+    cv::compare(images.instance, placed.instance, part.mask_visib, cv::CMP_EQ);
+    fill_gt_info(part, images.depth);
+    if (!settings.store_masks) {
+      part.mask.release();
+      part.mask_visib.release();
+    }
+    image.parts.push_back(std::move(part));
+  }
+  return image;
+}
+
 }  // namespace
 
 AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
@@ -111,7 +154,6 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
   timing = {};
   Clock::time_point clock = Clock::now();
   const PinholeCamera camera = settings.camera();
-  const cv::Size size(camera.width, camera.height);
   const Augmentation augmentation = draw_augmentation(settings, seed, image_index);
   // Turning the picture by a about the principal point is turning the camera about its
   // optical axis (fx == fy): the parts are rendered in the turned camera, so masks,
@@ -159,40 +201,9 @@ AnnotatedImage render_full_synthetic(const FullSyntheticSettings& settings,
                        augmentation.noise_key);
   timing.compositing_ms = lap_ms(clock);
 
-  // Flips (reflections: the poses are stored reflected, see annotated_image.h), then
-  // every annotation from the final masks.
-  flip_image(rgb, augmentation);
-  flip_image(images.depth, augmentation);
-  flip_image(images.instance, augmentation);
-  const Eigen::Matrix3d F = Eigen::Vector3d(augmentation.flip_horizontal ? -1.0 : 1.0,
-                                            augmentation.flip_vertical ? -1.0 : 1.0, 1.0)
-                                .asDiagonal();
-  AnnotatedImage image;
-  image.im_id = image_index >= 0 && image_index <= INT_MAX ? static_cast<int>(image_index) : 0;
-  image.rgb = rgb;
-  if (settings.store_depth) {
-    image.depth = images.depth.clone();
-    apply_stereo_depth_noise(image.depth, camera.fx, settings.depth_noise,
-                             augmentation.noise_key ^ 0xD3E7B0A5ULL);
-  }
-  image.camera.K << camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0;
-  image.flipped_horizontally = augmentation.flip_horizontal;
-  image.flipped_vertically = augmentation.flip_vertical;
-  for (const PlacedPart& placed : placement.parts) {
-    const Pose& pose = scene->scene().instance(placed.instance).pose;
-    PartAnnotation part;
-    part.obj_id = parts.part(placed.part).obj_id;
-    part.cam_R_m2c = F * pose.R;
-    part.cam_t_m2c = F * pose.t;
-    part.mask = amodal_mask(placed.amodal, size, augmentation);
-    cv::compare(images.instance, placed.instance, part.mask_visib, cv::CMP_EQ);
-    fill_gt_info(part, images.depth);
-    if (!settings.store_masks) {
-      part.mask.release();
-      part.mask_visib.release();
-    }
-    image.parts.push_back(std::move(part));
-  }
+  // Flips, then every annotation from the final masks.
+  AnnotatedImage image = annotated_image(settings, parts, scene->scene(), placement, camera, augmentation,
+                                         image_index, rgb, images);
   timing.augmentation_ms = lap_ms(clock);
   return image;
 }

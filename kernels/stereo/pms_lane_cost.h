@@ -158,7 +158,8 @@ inline int pms_dense_batch_begin(int width, int height, PmsLanes* lanes, int* y,
  * one of its lanes has reached its bound, the pass when every batch has. Batches
  * evaluated together are bounded by the best costs from before any of them, not by what
  * the earlier ones improved: the caller offers them in order afterwards, and a cost that
- * a tighter bound would have cut off is >= that bound either way (pms_group_offer). */
+ * a tighter bound would have cut off is >= that bound either way (pms_group_offer).
+ * Kept whole although long: a kernel-like inner loop over the window. */
 __attribute__((always_inline)) inline void pms_cost_lanes_group(
     const PmsCostInputs* in, const PmsLanes* lanes, int py, const PmsCandidateBatch* batches,
     const int count, pms_floatv* costs) {

@@ -1,5 +1,5 @@
 // The mesh loader (host/render/mesh.h load_mesh: STL binary and ASCII, PLY ASCII and
-// binary, OBJ, read by host/render/mesh_files.cpp, then our joining, normals, box and
+// binary, OBJ, read by host/render/mesh_files.h, then our joining, normals, box and
 // diameter). The input's first byte picks the extension (its value modulo 3: .stl, .ply,
 // .obj); the rest is the file.
 #include <cmath>
