@@ -160,24 +160,36 @@ DatasetCamera camera_of(const Json& entry, const std::string& path, int im_id,
   return camera;
 }
 
-// An image flipped once (host/synth's augmentation) stores reflected poses.
-bool mirrored(const DatasetCamera& camera) {
+bool extra_flag(const DatasetCamera& camera, const char* key) {
   if (!camera.extra.is_object()) return false;
-  const Json& h = camera.extra.value("flip_horizontal", Json(false));
-  const Json& v = camera.extra.value("flip_vertical", Json(false));
-  return (h.is_boolean() && h.get<bool>()) != (v.is_boolean() && v.get<bool>());
+  const auto found = camera.extra.find(key);
+  return found != camera.extra.end() && found->is_boolean() && found->get<bool>();
+}
+
+// What the image's scene_camera.json entry says of its poses: an image flipped once
+// (host/synth's augmentation) stores reflections; a pasted one (synth semi) stores
+// placeholders (identity, origin) under "pose_unknown".
+struct PoseKind {
+  bool mirrored = false;
+  bool unknown = false;
+};
+
+PoseKind pose_kind(const DatasetCamera& camera) {
+  return {extra_flag(camera, "flip_horizontal") != extra_flag(camera, "flip_vertical"),
+          extra_flag(camera, "pose_unknown")};
 }
 
 void read_gt(const Json& entry, const std::string& path, const std::string& where,
-             bool image_mirrored, PartAnnotation& part) {
+             const PoseKind& kind, PartAnnotation& part) {
   part.cam_R_m2c =
       matrix_of(require_key(entry, "cam_R_m2c", path, where), path, where + ": cam_R_m2c");
-  const std::string r_problem = physical_checks::rotation_problem(part.cam_R_m2c, image_mirrored);
+  const std::string r_problem = physical_checks::rotation_problem(part.cam_R_m2c, kind.mirrored);
   if (!r_problem.empty()) throw InputError(path, where + ": cam_R_m2c " + r_problem);
   const std::vector<double> t = dataset_files::to_doubles(
       require_key(entry, "cam_t_m2c", path, where), 3, path, where + ": cam_t_m2c");
   part.cam_t_m2c = Eigen::Vector3d(t[0], t[1], t[2]);
-  const std::string t_problem = physical_checks::translation_problem(part.cam_t_m2c, true);
+  const std::string t_problem =
+      physical_checks::translation_problem(part.cam_t_m2c, !kind.unknown);
   if (!t_problem.empty()) throw InputError(path, where + ": cam_t_m2c " + t_problem);
   part.obj_id =
       dataset_files::to_int(require_key(entry, "obj_id", path, where), path, where + ": obj_id");
@@ -235,7 +247,7 @@ BopSceneJson read_bop_scene_json(const std::string& scene_dir, bool require_dept
     parts.resize(list.size());
     for (std::size_t gt_id = 0; gt_id < list.size(); ++gt_id) {
       read_gt(list[gt_id], gt_path, image_where(im_id) + ", gt " + std::to_string(gt_id),
-              mirrored(scene.images[im_id].camera), parts[gt_id]);
+              pose_kind(scene.images[im_id].camera), parts[gt_id]);
     }
   }
 

@@ -231,3 +231,16 @@ TEST(BopBadInput, BoxesWithANegativeSizeOrOutsideTheImage) {
                     "\"bbox_visib\": [-1, -1, -1, -1]");
   EXPECT_NO_THROW(BopReader(no_pixels.split()).load(0));
 }
+
+// synth semi's pasted parts have no pose: identity and the origin, marked in the camera
+// entry, are read as they are.
+TEST(BopBadInput, PlaceholderPosesOfPastedImagesAreRead) {
+  BrokenFixture broken;
+  broken.replace("scene_gt.json", "\"cam_t_m2c\": [4.0, -2.5, 650.0]",
+                 "\"cam_t_m2c\": [0.0, 0.0, 0.0]");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                 "000001/scene_gt.json", "image 1, gt 0: cam_t_m2c puts the part"));
+  broken.replace("scene_camera.json", "\"elev\": 35", "\"elev\": 35, \"pose_unknown\": true");
+  const BopReader reader(broken.split());
+  EXPECT_EQ(reader.record(1).parts[0].cam_t_m2c, Eigen::Vector3d::Zero());
+}
