@@ -3,6 +3,7 @@
 #include "host/dataset/bop_layout.h"
 #include "host/dataset/dataset_files.h"
 #include "host/io/input_error.h"
+#include "host/io/physical_checks.h"
 
 namespace flexsight {
 namespace {
@@ -77,15 +78,29 @@ Eigen::Matrix3d matrix_of(const Json& value, const std::string& file, const std:
   return m;
 }
 
-BopBox box_of(const Json& value, const std::string& file, const std::string& where) {
+BopBox box_of(const Json& value, const std::string& file, const std::string& where,
+              bool visible) {
   if (!value.is_array() || value.size() != 4) {
     throw InputError(
         file, where + ": expected an array of 4 integers [x, y, w, h], found " + value.dump());
   }
-  return BopBox{dataset_files::to_int(value[0], file, where + "[0]"),
-                dataset_files::to_int(value[1], file, where + "[1]"),
-                dataset_files::to_int(value[2], file, where + "[2]"),
-                dataset_files::to_int(value[3], file, where + "[3]")};
+  const BopBox box{dataset_files::to_int(value[0], file, where + "[0]"),
+                   dataset_files::to_int(value[1], file, where + "[1]"),
+                   dataset_files::to_int(value[2], file, where + "[2]"),
+                   dataset_files::to_int(value[3], file, where + "[3]")};
+  // (-1, -1, -1, -1) marks a part without pixels; any other box has a size (0 for one
+  // pixel in the BOP toolkit's x_max - x_min). bbox_obj may start left of or above the
+  // image (the toolkit measures the whole silhouette), bbox_visib may not.
+  if (box == BopBox{}) return box;
+  if (box.width < 0 || box.height < 0) {
+    throw InputError(file, where + ": " + value.dump() +
+                               " has a negative width or height (a part without pixels is "
+                               "[-1, -1, -1, -1])");
+  }
+  if (visible && (box.x < 0 || box.y < 0)) {
+    throw InputError(file, where + ": " + value.dump() + " starts outside the image");
+  }
+  return box;
 }
 
 // The file's top-level object by im_id.
@@ -131,12 +146,13 @@ DatasetCamera camera_of(const Json& entry, const std::string& path, int im_id,
   const std::string where = image_where(im_id);
   DatasetCamera camera;
   camera.K = matrix_of(require_key(entry, "cam_K", path, where), path, where + ": cam_K");
+  const std::string k_problem = physical_checks::intrinsics_problem(camera.K);
+  if (!k_problem.empty()) throw InputError(path, where + ": cam_K: " + k_problem);
   if (require_depth_scale || entry.contains("depth_scale")) {
     camera.depth_scale = dataset_files::to_double(require_key(entry, "depth_scale", path, where),
                                                   path, where + ": depth_scale");
-    if (!(camera.depth_scale > 0)) {
-      throw InputError(path, where + ": depth_scale must be positive");
-    }
+    const std::string problem = physical_checks::depth_scale_problem(camera.depth_scale);
+    if (!problem.empty()) throw InputError(path, where + ": depth_scale " + problem);
   }
   for (const auto& [key, value] : entry.items()) {
     if (key != "cam_K" && key != "depth_scale") camera.extra[key] = value;
@@ -144,13 +160,37 @@ DatasetCamera camera_of(const Json& entry, const std::string& path, int im_id,
   return camera;
 }
 
+bool extra_flag(const DatasetCamera& camera, const char* key) {
+  if (!camera.extra.is_object()) return false;
+  const auto found = camera.extra.find(key);
+  return found != camera.extra.end() && found->is_boolean() && found->get<bool>();
+}
+
+// What the image's scene_camera.json entry says of its poses: an image flipped once
+// (host/synth's augmentation) stores reflections; a pasted one (synth semi) stores
+// placeholders (identity, origin) under "pose_unknown".
+struct PoseKind {
+  bool mirrored = false;
+  bool unknown = false;
+};
+
+PoseKind pose_kind(const DatasetCamera& camera) {
+  return {extra_flag(camera, "flip_horizontal") != extra_flag(camera, "flip_vertical"),
+          extra_flag(camera, "pose_unknown")};
+}
+
 void read_gt(const Json& entry, const std::string& path, const std::string& where,
-             PartAnnotation& part) {
+             const PoseKind& kind, PartAnnotation& part) {
   part.cam_R_m2c =
       matrix_of(require_key(entry, "cam_R_m2c", path, where), path, where + ": cam_R_m2c");
+  const std::string r_problem = physical_checks::rotation_problem(part.cam_R_m2c, kind.mirrored);
+  if (!r_problem.empty()) throw InputError(path, where + ": cam_R_m2c " + r_problem);
   const std::vector<double> t = dataset_files::to_doubles(
       require_key(entry, "cam_t_m2c", path, where), 3, path, where + ": cam_t_m2c");
   part.cam_t_m2c = Eigen::Vector3d(t[0], t[1], t[2]);
+  const std::string t_problem =
+      physical_checks::translation_problem(part.cam_t_m2c, !kind.unknown);
+  if (!t_problem.empty()) throw InputError(path, where + ": cam_t_m2c " + t_problem);
   part.obj_id =
       dataset_files::to_int(require_key(entry, "obj_id", path, where), path, where + ": obj_id");
 }
@@ -160,9 +200,10 @@ void read_gt_info(const Json& entry, const std::string& path, const std::string&
   auto integer = [&](const char* key) {
     return dataset_files::to_int(require_key(entry, key, path, where), path, where + ": " + key);
   };
-  part.bbox_obj = box_of(require_key(entry, "bbox_obj", path, where), path, where + ": bbox_obj");
+  part.bbox_obj =
+      box_of(require_key(entry, "bbox_obj", path, where), path, where + ": bbox_obj", false);
   part.bbox_visib =
-      box_of(require_key(entry, "bbox_visib", path, where), path, where + ": bbox_visib");
+      box_of(require_key(entry, "bbox_visib", path, where), path, where + ": bbox_visib", true);
   part.px_count_all = integer("px_count_all");
   part.px_count_valid = integer("px_count_valid");
   part.px_count_visib = integer("px_count_visib");
@@ -206,7 +247,7 @@ BopSceneJson read_bop_scene_json(const std::string& scene_dir, bool require_dept
     parts.resize(list.size());
     for (std::size_t gt_id = 0; gt_id < list.size(); ++gt_id) {
       read_gt(list[gt_id], gt_path, image_where(im_id) + ", gt " + std::to_string(gt_id),
-              parts[gt_id]);
+              pose_kind(scene.images[im_id].camera), parts[gt_id]);
     }
   }
 

@@ -37,7 +37,9 @@ struct BopSceneJson {
 // and depth_scale go to DatasetCamera::extra; depth_scale may be absent only when
 // `require_depth_scale` is false (it then keeps its default). Throws InputError naming
 // the file for a missing or invalid file, a missing key, a value of the wrong type or
-// length, and images listed in one file but not in another.
+// length, images listed in one file but not in another, and a pose, camera or box out
+// of its physical range (host/io/physical_checks.h; a reflected R where the image is
+// flipped once, a t at the origin where its camera entry says "pose_unknown").
 BopSceneJson read_bop_scene_json(const std::string& scene_dir, bool require_depth_scale);
 
 }  // namespace flexsight

@@ -1,6 +1,5 @@
 #include "host/dataset/bop_pose_results.h"
 
-#include <Eigen/LU>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -10,16 +9,13 @@
 
 #include "host/dataset/dataset_files.h"
 #include "host/io/input_error.h"
+#include "host/io/physical_checks.h"
 
 namespace flexsight {
 namespace {
 
 constexpr const char* kHeader = "scene_id,im_id,obj_id,score,R,t,time";
 constexpr int kColumns = 7;
-// How far R^T R may be from the identity, entry by entry, and still count as a rotation:
-// results printed with 6 to 8 digits (as many writers do) are off by about 1e-6.
-constexpr double kRotationTolerance = 1e-3;
-
 // The shortest text that reads back to the same double (std::to_chars without a
 // precision), so that a file read and written again gives the same bytes.
 std::string number_text(double value) {
@@ -90,14 +86,11 @@ class LineParser {
     return values;
   }
 
-  void check_rotation(const Eigen::Matrix3d& R) const {
-    const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-    if (off > kRotationTolerance) {
-      fail("R is not a rotation: |R^T R - I| reaches " + number_text(off) + " (at most " +
-           number_text(kRotationTolerance) + ")");
-    }
-    const double det = R.determinant();
-    if (det < 0) fail("R is a reflection, not a rotation (det " + number_text(det) + ")");
+  void check_pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) const {
+    const std::string r_problem = physical_checks::rotation_problem(R);
+    if (!r_problem.empty()) fail("R " + r_problem);
+    const std::string t_problem = physical_checks::translation_problem(t, false);
+    if (!t_problem.empty()) fail("t " + t_problem);
   }
 
  private:
@@ -124,7 +117,7 @@ PoseEstimateRecord parse_line(const std::string& path, int line_number, const st
     for (int col = 0; col < 3; ++col) record.R(row, col) = R[3 * row + col];
   }
   record.t = Eigen::Vector3d(t[0], t[1], t[2]);
-  parser.check_rotation(record.R);
+  parser.check_pose(record.R, record.t);
   return record;
 }
 
@@ -187,6 +180,10 @@ std::vector<PoseEstimateRecord> read_bop_pose_results(const std::string& path) {
     records.push_back(parse_line(path, line_number, line));
   }
   if (in.bad()) throw InputError(path, "cannot be read");
+  // A file without even BOP's header line is what a run that died before writing leaves.
+  if (first) {
+    throw InputError(path, "is empty (expected BOP's header " + std::string(kHeader) + ")");
+  }
   return records;
 }
 

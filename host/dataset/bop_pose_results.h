@@ -33,8 +33,8 @@ void write_bop_pose_results(const std::string& path, const std::vector<PoseEstim
 // Throws InputError naming the file and the line number for a line without exactly 7
 // comma-separated columns, an id that is not a whole number (or is negative), a number
 // that cannot be read or is not finite, R without 9 or t without 3 numbers, and an R
-// that is not a rotation (|R^T R - I| > 1e-3 in any entry, or det(R) < 0); InputError
-// naming the file when it does not exist or cannot be read.
+// that is not a rotation or a t beyond 100 m (host/io/physical_checks.h); InputError
+// naming the file when it does not exist, cannot be read or is empty (not even a header).
 std::vector<PoseEstimateRecord> read_bop_pose_results(const std::string& path);
 
 }  // namespace flexsight

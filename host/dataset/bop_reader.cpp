@@ -68,6 +68,22 @@ cv::Mat read_mask(const std::string& path, const cv::Size& size) {
   return mask != 0;
 }
 
+// The visible box lies in the image (the reader of scene_gt_info.json checked the rest
+// of it, without the image's size).
+void require_inside(const BopBox& box, const cv::Size& size, const std::string& scene_dir,
+                    int im_id, int gt_id) {
+  const long long right = static_cast<long long>(box.x) + box.width;
+  const long long bottom = static_cast<long long>(box.y) + box.height;
+  if (box.empty() || (right <= size.width && bottom <= size.height)) {
+    return;
+  }
+  throw InputError(scene_dir + "/" + bop_layout::kSceneGtInfo,
+                   "image " + std::to_string(im_id) + ", gt " + std::to_string(gt_id) +
+                       ": bbox_visib [" + std::to_string(box.x) + ", " + std::to_string(box.y) +
+                       ", " + std::to_string(box.width) + ", " + std::to_string(box.height) +
+                       "] reaches beyond the " + io_detail::size_text(size) + " image");
+}
+
 }  // namespace
 
 BopReader::BopReader(const std::string& path) {
@@ -150,6 +166,7 @@ AnnotatedImage BopReader::load(std::size_t i) const {
   for (std::size_t gt_id = 0; gt_id < image.parts.size(); ++gt_id) {
     PartAnnotation& part = image.parts[gt_id];
     const int gt = static_cast<int>(gt_id);
+    if (scene.json.has_gt_info) require_inside(part.bbox_visib, size, scene.dir, entry.im_id, gt);
     if (scene.has_mask) {
       part.mask =
           read_mask(scene.dir + "/" + bop_layout::mask_in_scene(entry.im_id, gt, false), size);

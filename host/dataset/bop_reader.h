@@ -40,8 +40,8 @@ class BopReader {
   // 8-bit RGB), depth in mm (value * depth_scale) when the scene has depth/, masks when it
   // has mask/ or mask_visib/ (any non-zero value is the part: 255), and the JSON
   // records. Throws InputError naming the file for a missing or unreadable image, a depth
-  // that is not 16-bit gray, a mask that is not 8-bit gray, or a size that differs from
-  // the rgb's. Thread-safe.
+  // that is not 16-bit gray, a mask that is not 8-bit gray, a size that differs from
+  // the rgb's, or a bbox_visib that reaches beyond the image. Thread-safe.
   AnnotatedImage load(std::size_t i) const;
 
  private:

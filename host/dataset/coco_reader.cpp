@@ -8,6 +8,7 @@
 #include "host/dataset/gt_info.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/physical_checks.h"
 
 namespace flexsight {
 namespace {
@@ -107,6 +108,23 @@ CocoCategory category_of(const Json& entry, const std::string& path, const std::
   return category;
 }
 
+// x, y, width, height within the image; a pixel of slack for writers that round.
+void require_box_in_image(const std::array<double, 4>& bbox, const CocoImage& image,
+                          const std::string& path, const std::string& where) {
+  const double slack = 1.0;
+  const bool inside = bbox[2] >= 0 && bbox[3] >= 0 && bbox[0] >= -slack && bbox[1] >= -slack &&
+                      bbox[0] + bbox[2] <= image.width + slack &&
+                      bbox[1] + bbox[3] <= image.height + slack;
+  if (!inside) {
+    throw InputError(path, where + ": bbox [" + physical_checks::number_text(bbox[0]) + ", " +
+                               physical_checks::number_text(bbox[1]) + ", " +
+                               physical_checks::number_text(bbox[2]) + ", " +
+                               physical_checks::number_text(bbox[3]) +
+                               "] is not a box inside the " + std::to_string(image.width) + "x" +
+                               std::to_string(image.height) + " image");
+  }
+}
+
 }  // namespace
 
 CocoDataset read_coco(const std::string& path) {
@@ -145,6 +163,7 @@ CocoDataset read_coco(const std::string& path) {
                                  std::to_string(image->second->height) + " x " +
                                  std::to_string(image->second->width));
     }
+    require_box_in_image(annotation.bbox, *image->second, path, where);
     const bool known =
         dataset.categories.empty() ||
         std::any_of(dataset.categories.begin(), dataset.categories.end(),

@@ -10,6 +10,7 @@
 #include "host/dataset/dataset_files.h"
 #include "host/io/input_error.h"
 #include "host/io/io_helpers.h"
+#include "host/io/physical_checks.h"
 
 namespace flexsight {
 namespace {
@@ -106,6 +107,12 @@ class EntryReader {
     if (box[2] < 0 || box[3] < 0) {
       fail("bbox " + value.dump() +
            " has a negative width or height (expected x, y, width, height, not corners)");
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (std::fabs(box[k]) > physical_checks::kMaxBoxPx) {
+        fail("bbox " + value.dump() + " reaches beyond " +
+             physical_checks::number_text(physical_checks::kMaxBoxPx) + " pixels");
+      }
     }
     return box;
   }

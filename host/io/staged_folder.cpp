@@ -1,7 +1,9 @@
 #include "host/io/staged_folder.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <system_error>
 
@@ -10,6 +12,32 @@
 namespace flexsight {
 namespace {
 namespace fs = std::filesystem;
+
+// True when no process has the id `pid` (kill with signal 0 only asks).
+bool process_is_gone(long pid) {
+  return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH;
+}
+
+// Removes the staging folders of `name` in `parent` that runs which died (a crash, a
+// kill) left: ".NAME.staging-PID" whose PID is no longer running. A live run's folder
+// stays, whoever it belongs to.
+void remove_stale_staging(const fs::path& parent, const std::string& name) {
+  const std::string prefix = "." + name + ".staging-";
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    if (entry.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = entry.substr(prefix.size());
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    if (!process_is_gone(std::stol(digits))) continue;
+    std::error_code ignored;
+    fs::remove_all(it->path(), ignored);
+  }
+}
+
 }  // namespace
 
 StagedFolder::StagedFolder(const std::string& target, bool overwrite, const std::string& option)
@@ -36,6 +64,7 @@ StagedFolder::StagedFolder(const std::string& target, bool overwrite, const std:
   staging_ = (parent / ("." + path.filename().string() + ".staging-" +
                         std::to_string(static_cast<long>(::getpid()))))
                  .string();
+  remove_stale_staging(parent, path.filename().string());
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec)) {
     throw InputError(target_, "cannot be written: creating " + staging_ + " failed (" +

@@ -13,7 +13,8 @@ class StagedFolder {
   // Checks the target before any work starts: it must not exist, or be an empty
   // folder, or `overwrite` must be set (then it is replaced at commit()); its parent
   // folder must exist (it is not created: a typo in a path should not create a tree).
-  // Creates the staging folder. Throws InputError naming `option` and `target`.
+  // Removes the staging folders of the same target left by runs that died (their process
+  // is gone), then creates this run's. Throws InputError naming `option` and `target`.
   StagedFolder(const std::string& target, bool overwrite, const std::string& option = "-o");
   // Removes the staging folder unless commit() succeeded.
   ~StagedFolder();

@@ -163,7 +163,9 @@ void TemplateParams::check() const {
     if (!ok) throw InputError(std::string("template parameter ") + field, what);
   };
   require(views >= 1 && views <= 100000, "views", "must be in 1..100000");
-  require(in_plane_steps >= 1 && in_plane_steps <= 3600, "in_plane_steps", "must be in 1..3600");
+  // The search keeps candidates 12 degrees apart and the refinement turns them further;
+  // steps finer than 1 degree only multiply its time.
+  require(in_plane_steps >= 1 && in_plane_steps <= 360, "in_plane_steps", "must be in 1..360");
   require(points_per_view >= 4 && points_per_view <= 4096, "points_per_view", "must be in 4..4096");
   require(crease_degrees > 0.0f && crease_degrees < 180.0f, "crease_degrees",
           "must be in (0, 180) degrees");

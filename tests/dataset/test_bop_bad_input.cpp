@@ -139,3 +139,108 @@ TEST(BopBadInput, FolderWithoutScenes) {
   EXPECT_TRUE(
       throws_input_error([&] { BopReader reader(dir / "missing"); }, "missing", "does not exist"));
 }
+
+// Values that parse but describe no camera or pose: refused where they are read, with the
+// file and entry named, before a renderer or a search meets them.
+TEST(BopBadInput, GroundTruthRotationThatIsNotARotation) {
+  const std::string good = "\"cam_R_m2c\": [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0], "
+                           "\"cam_t_m2c\": [-7.0";
+  for (const char* R : {"1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0",
+                        "0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0",
+                        "0.0, 2.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, -2.0"}) {
+    BrokenFixture broken;
+    broken.replace("scene_gt.json", good,
+                   std::string("\"cam_R_m2c\": [") + R + "], \"cam_t_m2c\": [-7.0");
+    EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                   "000001/scene_gt.json",
+                                   "image 0, gt 1: cam_R_m2c is not a rotation"))
+        << R;
+  }
+  BrokenFixture reflected;  // det -1 in an image that was not flipped
+  reflected.replace("scene_gt.json", good,
+                    "\"cam_R_m2c\": [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0], "
+                    "\"cam_t_m2c\": [-7.0");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(reflected.split()); },
+                                 "000001/scene_gt.json",
+                                 "image 0, gt 1: cam_R_m2c is a reflection, not a rotation"));
+}
+
+TEST(BopBadInput, MirroredImageKeepsItsReflectedPoses) {
+  BrokenFixture broken;
+  broken.replace("scene_gt.json",
+                 "0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0], \"cam_t_m2c\": [4.0",
+                 "0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0], \"cam_t_m2c\": [4.0");
+  broken.replace("scene_camera.json", "\"elev\": 35", "\"elev\": 35, \"flip_horizontal\": true");
+  const BopReader reader(broken.split());
+  EXPECT_DOUBLE_EQ(reader.record(1).parts[0].cam_R_m2c.determinant(), -1.0);
+}
+
+TEST(BopBadInput, GroundTruthTranslationOutsideThePhysicalRange) {
+  const std::string good = "\"cam_t_m2c\": [-7.0, -5.5, 700.0]";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[0.0, 0.0, 0.0]", "cam_t_m2c puts the part behind the camera"},
+      {"[0.0, 0.0, -700.0]", "cam_t_m2c puts the part behind the camera"},
+      {"[0.0, 0.0, 1e30]",
+       "cam_t_m2c [0, 0, 1e+30] is farther than 100000 mm from the camera"}};
+  for (const auto& [t, problem] : cases) {
+    BrokenFixture broken;
+    broken.replace("scene_gt.json", good, "\"cam_t_m2c\": " + t);
+    EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                   "000001/scene_gt.json", "image 0, gt 1: " + problem))
+        << t;
+  }
+}
+
+TEST(BopBadInput, CameraOutsideThePhysicalRange) {
+  const std::string fx = "[1075.65091572, 0.0, 374.06888344, 0.0, 1073.90347929";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[0.0, 0.0, 374.06888344, 0.0, 0.0", "image 0: cam_K: focal lengths fx = 0, fy = 0"},
+      {"[1e308, 0.0, 374.06888344, 0.0, 1073.90347929",
+       "image 0: cam_K: focal lengths fx = 1e+308"},
+      {"[1075.65091572, 0.0, 1e300, 0.0, 1073.90347929", "image 0: cam_K: principal point"}};
+  for (const auto& [K, problem] : cases) {
+    BrokenFixture broken;
+    broken.replace("scene_camera.json", fx, K);
+    EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                   "000001/scene_camera.json", problem))
+        << K;
+  }
+  BrokenFixture scale;
+  scale.replace("scene_camera.json", "\"depth_scale\": 0.1", "\"depth_scale\": 1e308");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(scale.split()); },
+                                 "000001/scene_camera.json",
+                                 "image 0: depth_scale 1e+308 is beyond 100 mm per depth unit"));
+}
+
+TEST(BopBadInput, BoxesWithANegativeSizeOrOutsideTheImage) {
+  BrokenFixture negative;
+  negative.replace("scene_gt_info.json", "\"bbox_visib\": [9, 7, 13, 11]",
+                   "\"bbox_visib\": [9, 7, -13, 11]");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(negative.split()); },
+                                 "000001/scene_gt_info.json",
+                                 "image 0, gt 1: bbox_visib: [9,7,-13,11] has a negative width"));
+  BrokenFixture outside;
+  outside.replace("scene_gt_info.json", "\"bbox_visib\": [9, 7, 13, 11]",
+                  "\"bbox_visib\": [29, 7, 13, 11]");
+  const BopReader reader(outside.split());  // the image's size is known at load()
+  EXPECT_TRUE(throws_input_error([&] { reader.load(0); }, "000001/scene_gt_info.json",
+                                 "image 0, gt 1: bbox_visib [29, 7, 13, 11] reaches beyond the "
+                                 "32x24 image"));
+  BrokenFixture no_pixels;  // BOP's mark of a part without pixels stays accepted
+  no_pixels.replace("scene_gt_info.json", "\"bbox_visib\": [9, 7, 13, 11]",
+                    "\"bbox_visib\": [-1, -1, -1, -1]");
+  EXPECT_NO_THROW(BopReader(no_pixels.split()).load(0));
+}
+
+// synth semi's pasted parts have no pose: identity and the origin, marked in the camera
+// entry, are read as they are.
+TEST(BopBadInput, PlaceholderPosesOfPastedImagesAreRead) {
+  BrokenFixture broken;
+  broken.replace("scene_gt.json", "\"cam_t_m2c\": [4.0, -2.5, 650.0]",
+                 "\"cam_t_m2c\": [0.0, 0.0, 0.0]");
+  EXPECT_TRUE(throws_input_error([&] { BopReader reader(broken.split()); },
+                                 "000001/scene_gt.json", "image 1, gt 0: cam_t_m2c puts the part"));
+  broken.replace("scene_camera.json", "\"elev\": 35", "\"elev\": 35, \"pose_unknown\": true");
+  const BopReader reader(broken.split());
+  EXPECT_EQ(reader.record(1).parts[0].cam_t_m2c, Eigen::Vector3d::Zero());
+}

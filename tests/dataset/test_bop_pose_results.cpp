@@ -125,6 +125,10 @@ TEST(BopPoseResults, BadLinesNameFileLineAndProblem) {
       {"1,2,5,0.75,2 0 0 0 1 0 0 0 1,0 0 600,-1", "R is not a rotation"},
       {"1,2,5,0.75,1 0 0 0 1.01 0 0 0 1,0 0 600,-1", "R is not a rotation"},
       {"1,2,5,0.75,-1 0 0 0 1 0 0 0 1,0 0 600,-1", "R is a reflection"},
+      {"1,2,5,0.75,1.0004 0 0 0 1.0004 0 0 0 1.0004,0 0 600,-1",
+       "R is not a rotation: det 1.0012"},
+      {"1,2,5,0.75,1 0 0 0 1 0 0 0 1,0 0 1e300,-1",
+       "t [0, 0, 1e+300] is farther than 100000 mm from the camera"},
   };
   for (const auto& c : cases) {
     write_file(dir / "bad.csv", std::string(kHeader) + kGoodLine + c.line + "\n");
@@ -157,4 +161,17 @@ TEST(BopPoseResults, RefusesToWriteNumbersItCouldNotRead) {
   EXPECT_TRUE(throws_input_error([&] { write_bop_pose_results(dir / "n.csv", {r}); }, "n.csv",
                                  "record 0 has a number that is not finite"));
   EXPECT_FALSE(fs::exists(dir / "n.csv"));
+}
+
+TEST(BopPoseResults, EmptyFileIsRefusedAndAFailedEstimateIsNot) {
+  ScratchDir dir;
+  write_file(dir / "empty.csv", "");
+  EXPECT_TRUE(throws_input_error([&] { read_bop_pose_results(dir / "empty.csv"); }, "empty.csv",
+                                 "is empty (expected BOP's header"));
+  // A header alone: a run that found nothing.
+  write_file(dir / "header.csv", kHeader);
+  EXPECT_TRUE(read_bop_pose_results(dir / "header.csv").empty());
+  // An estimate at the camera's centre is a wrong pose, scored as a miss, not a bad file.
+  write_file(dir / "origin.csv", std::string(kHeader) + "1,2,5,0,1 0 0 0 1 0 0 0 1,0 0 0,-1\n");
+  EXPECT_EQ(read_bop_pose_results(dir / "origin.csv").size(), 1u);
 }

@@ -147,3 +147,18 @@ TEST(CocoFiles, WriterRefusesAFolderInUse) {
   EXPECT_TRUE(
       throws_input_error([&] { DatasetWriter writer(dir / "set", {}); }, "set", "is not empty"));
 }
+
+TEST(CocoFiles, BoxesOutsideTheImageAreRefused) {
+  ScratchDir dir;
+  for (const char* bbox : {"[0, 0, -1, 1]", "[3, 0, 1e308, 1]", "[0, 2, 1, 3]"}) {
+    const std::string path = coco_file(
+        dir, std::string("{") + kImages +
+                 R"(, "annotations": [{"id": 1, "image_id": 1, "category_id": 1, "bbox": )" +
+                 bbox + R"(, "area": 1, "segmentation": {"size": [3, 4], "counts": [12]}}]})");
+    EXPECT_TRUE(throws_input_error([&] { read_coco(path); }, path, "annotations[0]: bbox ["))
+        << bbox;
+    EXPECT_TRUE(
+        throws_input_error([&] { read_coco(path); }, path, "is not a box inside the 4x3 image"))
+        << bbox;
+  }
+}

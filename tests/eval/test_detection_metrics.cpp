@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <vector>
 
 #include "host/eval/detection_metrics.h"
+#include "host/eval/detection_results_reader.h"
+#include "host/io/input_error.h"
 
 namespace flexsight {
 namespace {
@@ -229,6 +233,26 @@ TEST(EvalDetMetrics, RejectsMisuse) {
   DetectionEvalOptions options;
   options.iou_threshold = 0;
   EXPECT_THROW(evaluate_detections(gt, {{}}, {{1, "one"}}, options), std::invalid_argument);
+}
+
+// The results reader refuses a box no image could hold, naming the file and entry.
+TEST(EvalDetResultsReader, RefusesABoxBeyondAMillionPixels) {
+  const DetectionGroundTruth truth(std::string(FLEXSIGHT_TEST_DATA_DIR) +
+                                   "/detect/tless_synth_8/coco_instances.json");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "flexsight_results_huge_box.json").string();
+  std::ofstream(path) << R"([{"image_id": 0, "category_id": 14, "bbox": [1, 2, 3, 4], "score": 0.5},
+    {"image_id": 0, "category_id": 14, "bbox": [1, 2, 1e308, 4], "score": 0.5}])";
+  try {
+    read_detection_results(path, truth);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": entry 1: bbox [1,2,1e+308,4] reaches beyond "
+                                         "1000000 pixels"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -101,6 +101,15 @@ scene = f'{D}/bop_tless_like/000001'
 parts = [read(f'{scene}/{f}') for f in ('scene_camera.json', 'scene_gt.json', 'scene_gt_info.json')]
 w('bop_json/tless_like.bin', b'\0'.join(parts))
 w('bop_json/tless_like_no_gt_info.bin', b'\0'.join(parts[:2]))
+# The poses' kinds the readers tell apart (host/io/physical_checks.h): image 0 pasted
+# (pose_unknown, the origin), image 1 flipped once (a reflected R); a part without pixels.
+kinds = [parts[0].replace(b'"elev": 30', b'"elev": 30, "pose_unknown": true')
+                 .replace(b'"elev": 35', b'"elev": 35, "flip_horizontal": true'),
+         parts[1].replace(b'[-13.0, -8.5, 600.0]', b'[0.0, 0.0, 0.0]')
+                 .replace(b'0.0, -1.0], "cam_t_m2c": [4.0', b'0.0, 1.0], "cam_t_m2c": [4.0'),
+         parts[2].replace(b'"bbox_visib": [9, 7, 13, 11]', b'"bbox_visib": [-1, -1, -1, -1]')]
+assert kinds != parts
+w('bop_json/pasted_flipped_hidden.bin', b'\0'.join(kinds))
 
 # COCO: two images of the committed synthetic set (compressed RLE), a crowd region
 # (uncompressed RLE).
@@ -131,6 +140,8 @@ w('detection_results/empty.json', b'[]')
 w('bop_pose_results/with_header.csv',
   b'scene_id,im_id,obj_id,score,R,t,time\n1,0,5,0.75,1 0 0 0 1 0 0 0 1,10 -20 500.5,0.25\n'
   b'1,3,7,1,0 -1 0 1 0 0 0 0 1,0 0 300,-1\n')
+w('bop_pose_results/failed_estimate_at_origin.csv',
+  b'scene_id,im_id,obj_id,score,R,t,time\n1,0,5,0,1 0 0 0 1 0 0 0 1,0 0 0,-1\n')
 w('bop_pose_results/no_header_crlf.csv',
   b'2,1,1,0.5,1 0 0 0 1 0 0 0 1,1 2 3,1.5\r\n\r\n2,1,4,0.25,1 0 0 0 0 -1 0 1 0,4 5 6,1.5')
 

@@ -1,6 +1,8 @@
 // Tests of StagedFolder (host/io/staged_folder.h): the output folder appears whole at
 // commit() or not at all, and a target that would be lost is refused up front.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <string>
 #include <vector>
@@ -69,4 +71,28 @@ TEST(StagedFolder, RefusesFileTargetAndMissingParent) {
                                  dir.file("file"), "not a folder"));
   EXPECT_TRUE(throws_input_error([&] { StagedFolder staged(dir.file("no/such/data"), false); },
                                  dir.file("no/such/data"), "parent folder does not exist"));
+}
+
+// A run that dies (a crash, a kill) leaves its staging folder; the next run of the same
+// target removes it when its process is gone, and leaves a live run's alone.
+TEST(StagedFolder, RemovesStagingFoldersOfRunsThatDied) {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);  // its id now names no process
+  ScratchDir dir;
+  const std::string dead = ".data.staging-" + std::to_string(child);
+  const std::string live = ".data.staging-" + std::to_string(::getppid());
+  const std::string other = ".other.staging-" + std::to_string(child);
+  for (const std::string& name : {dead, live, other}) {
+    fs::create_directory(dir.file(name));
+    write_bytes(dir.file(name + "/half"), "x");
+  }
+  {
+    StagedFolder staged(dir.file("data"), false);
+    EXPECT_FALSE(fs::exists(dir.file(dead)));
+    EXPECT_TRUE(fs::exists(dir.file(live + "/half")));
+    EXPECT_TRUE(fs::exists(dir.file(other + "/half")));
+    staged.commit();
+  }
 }

@@ -6,13 +6,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "host/io/input_error.h"
 #include "host/pose/edge_template.h"
 #include "host/pose/pose_estimator.h"
 #include "host/pose/pose_math.h"
+#include "host/pose/template_file.h"
 #include "host/render/mesh.h"
 #include "host/render/raycaster.h"
 #include "tests/pose/pose_test_support.h"
@@ -133,3 +138,39 @@ TEST_F(PoseEstimatorScene, RecoversAPartAThirdHiddenBehindABlock) {
 }
 
 }  // namespace
+
+// A template file's header is held to the ranges its writer accepts: a header asking for
+// more in-plane steps than pose-templates writes (which only slows the search) is refused.
+TEST(TemplateFile, HeaderOutOfTheWritersRangeIsRefused) {
+  TemplateParams params;
+  params.in_plane_steps = 360;
+  EXPECT_NO_THROW(params.check());
+  params.in_plane_steps = 361;
+  EXPECT_THROW(params.check(), InputError);
+
+  TemplateSet set;
+  set.parts.push_back(PartTemplates{});
+  set.parts[0].obj_id = 1;
+  set.parts[0].diameter = 10.0f;
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "flexsight_header_in_plane.tpl").string();
+  write_template_set(path, set);
+  EXPECT_EQ(read_template_set(path).params.in_plane_steps, 40);
+  {
+    // magic (8 bytes), version, views, then in_plane_steps
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(16);
+    const std::int32_t steps = 3600;
+    file.write(reinterpret_cast<const char*>(&steps), sizeof steps);
+  }
+  try {
+    read_template_set(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": template file: template parameter "
+                                         "in_plane_steps: must be in 1..360"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
+}
