@@ -7,6 +7,7 @@
 #include "host/cli/commands.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/pfm.h"
 
 namespace flexsight {
@@ -50,6 +51,7 @@ int run_cloud_command(std::vector<std::string> args) {
                                   " inputs");
   }
   if (!options.wants_3d()) throw InputError("option -o", "an output PLY path is required");
+  for (const std::string& path : {options.ply, options.depth, options.render}) check_output_file(path);
   const cv::Mat disparity = read_pfm(args[0]);
   if (disparity.channels() != 1) throw InputError(args[0], "is not a one-channel disparity map");
   const cv::Mat left = load_rgb8(args[1]);

@@ -22,6 +22,7 @@
 #include "host/detect/ssd_detector.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/progress_bar.h"
 
 namespace flexsight {
@@ -115,11 +116,7 @@ DetectOptions take_detect_options(std::vector<std::string>& args) {
 void check_outputs(const DetectOptions& options, const std::vector<std::string>& images) {
   for (const std::string& path : {options.output, options.png}) {
     if (path.empty()) continue;
-    const fs::path folder = fs::path(path).parent_path();
-    if (!folder.empty() && !fs::is_directory(folder)) {
-      throw InputError(path, "cannot be written: its folder does not exist");
-    }
-    if (fs::is_directory(path)) throw InputError(path, "cannot be written: it is a folder");
+    check_output_file(path);
     for (const std::string& image : images) {
       std::error_code ec;
       if (fs::equivalent(path, image, ec)) {

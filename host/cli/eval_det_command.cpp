@@ -173,6 +173,8 @@ int run_eval_det_command(std::vector<std::string> args) {
   if (!any_truth) {
     throw InputError(truth.source(), "has no ground-truth box (no visible object): nothing to score");
   }
+  // The output folder is checked (and its staging folder made) before the detector runs.
+  StagedFolder staged(options.out, options.overwrite, "--out");
   const DetectionResults detections = collect_detections(options, truth);
   DetectionEvalOptions eval_options;
   eval_options.iou_threshold = options.iou_threshold;
@@ -186,7 +188,6 @@ int run_eval_det_command(std::vector<std::string> args) {
   const cv::Mat montage = draw_detection_montage(montage_images(truth, detections, options.montage));
 
   // The folder appears whole or not at all.
-  StagedFolder staged(options.out, options.overwrite, "--out");
   const fs::path dir(staged.path());
   dataset_files::write_text((dir / "report.md").string(), to_markdown(report));
   dataset_files::write_text((dir / "report.json").string(), to_json(report));

@@ -95,16 +95,17 @@ int run_eval_pick_command(std::vector<std::string> args) {
   std::vector<std::string> bin_paths;
   for (const fs::path& dir : bin_dirs) {
     bins.push_back(bin_files(dir, passive_stereo));
-    pick_ndisp(options, bins.back().calib);
-    read_stereo_camera(bins.back().calib);
+    read_stereo_camera(bins.back().calib);  // a bad focal length named as such, not as a missing --ndisp
+    StereoParams stereo = settings.stereo;
+    stereo.ndisp = pick_ndisp(options, bins.back().calib);
+    check_bin_inputs(bins.back(), stereo, passive_stereo);
     bin_paths.push_back(dir.string());
   }
-  const std::set<int> obj_ids = bin_obj_ids(bin_paths);
+  StagedFolder staged(out, overwrite, "--out");
   PickSession session(settings);
   PickReport report = pick_report_header(bins_dir.string(), settings, session);
   const PoseScoringModels models =
-      load_pick_scoring_models(obj_ids, bins_dir.string(), settings, session, models_info);
-  StagedFolder staged(out, overwrite, "--out");
+      load_pick_scoring_models(bin_truth_sources(bin_paths), settings, session, models_info);
 
   for (std::size_t i = 0; i < bins.size(); ++i) {
     const BinFiles& files = bins[i];

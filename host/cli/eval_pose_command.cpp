@@ -122,8 +122,7 @@ int run_eval_pose_command(std::vector<std::string> args) {
   input.progress = !options.quiet;
   check_pose_estimates(input);
   std::set<int> obj_ids = ground_truth_obj_ids(reader);
-  std::map<int, std::string> source_of;
-  for (int obj_id : obj_ids) source_of[obj_id] = options.dataset;
+  std::map<int, std::string> source_of = ground_truth_sources(reader);
   for (const PoseEstimateRecord& r : input.records) {
     obj_ids.insert(r.obj_id);
     source_of[r.obj_id] = options.results;

@@ -1,7 +1,9 @@
 // flexsight pick: a rectified stereo pair in, the parts in the bin out, ranked for the
 // robot (host/pick/pick_session.h; docs/pick.md).
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/middeval3_files.h"
 #include "host/pick/pick_outputs.h"
 #include "host/pick/pick_session.h"
@@ -74,14 +77,6 @@ PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const
   return inputs;
 }
 
-void check_output_folder(const std::string& path, const std::string& option) {
-  if (path.empty()) return;
-  const fs::path folder = fs::path(path).parent_path();
-  if (!folder.empty() && !fs::is_directory(folder)) {
-    throw InputError(option + " " + path, "cannot be written: its folder does not exist");
-  }
-}
-
 void print_table(const PickResult& result) {
   std::printf("| rank | obj | pick score | pose score | visible | height mm | x mm | y mm | z mm |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
@@ -109,8 +104,8 @@ int run_pick_command(std::vector<std::string> args) {
   const std::string passive_left = take_option(args, "--passive-left");
   reject_unknown_options(args);
   const PickInputs inputs = resolve_pick_inputs(args, calib_option, passive_left);
-  check_output_folder(output, "-o");
-  check_output_folder(png, "--png");
+  check_output_file(output);
+  check_output_file(png);
 
   // Every input is read and checked before the work: the pair, the calibration against
   // it, the stereo parameters, then the detector, templates and CAD models.
@@ -138,7 +133,7 @@ int run_pick_command(std::vector<std::string> args) {
     write_atomically(output, [&](const std::string& tmp) {
       std::ofstream out(tmp);
       out << json;
-      if (!out) throw InputError(output, "cannot be written");
+      if (!out) throw InputError(output, "cannot be written (" + std::string(std::strerror(errno)) + ")");
     });
   }
   if (!png.empty()) write_image(png, [&] {

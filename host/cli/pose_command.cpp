@@ -93,6 +93,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   if (models_info.empty()) models_info = default_models_info_beside(cad);
 
   const BopReader reader(dataset);
+  StagedFolder staged(out, overwrite, "--out");
   const PoseModels models(templates, cad);
   const std::size_t image_count = limit < 0 ? reader.size() : std::min<std::size_t>(reader.size(), limit);
   const std::size_t boxes = count_boxes_to_pose(reader, image_count, models, min_visib);
@@ -103,8 +104,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   for (std::size_t i = 0; i < image_count; ++i) {
     for (const PartAnnotation& part : reader.record(i).parts) truth_ids.insert(part.obj_id);
   }
-  const PoseScoringModels scoring_models = load_pose_scoring_models(truth_ids, cad, models_info, {});
-  StagedFolder staged(out, overwrite, "--out");
+  const PoseScoringModels scoring_models = load_pose_scoring_models(truth_ids, cad, models_info, ground_truth_sources(reader));
 
   const DatasetPoses poses = pose_ground_truth_boxes(reader, image_count, boxes, models, params, min_visib, threads);
   const std::vector<PoseEstimateRecord>& records = poses.records;

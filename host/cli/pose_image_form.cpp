@@ -1,7 +1,9 @@
 // flexsight pose IMAGE ...: the parts in one image, each in its box (a detections
 // file), with the image's depth (a depth PFM in mm, or a disparity PFM and the stereo
 // calibration). Everything is read and checked before the first pose.
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -19,6 +21,7 @@
 #include "host/io/atomic_file.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/pfm.h"
 #include "host/pose/pose_drawing.h"
 #include "host/pose/pose_models.h"
@@ -95,6 +98,7 @@ PoseImageOptions parse_pose_image_options(std::vector<std::string>& args) {
   if (o.depth_path.empty() == o.disparity_path.empty()) throw InputError("option --depth / --disparity", "give exactly one");
   if (o.output.empty()) throw InputError("option -o", "missing: the poses JSON to write");
   if (!(o.min_score >= 0.0 && o.min_score <= 1.0)) throw InputError("option --score", "must be in [0, 1]");
+  for (const std::string& path : {o.output, o.csv, o.png}) check_output_file(path);
   return o;
 }
 
@@ -198,13 +202,13 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
   write_atomically(output, [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << poses.dump(1) << "\n";
-    if (!out) throw InputError(output, "cannot be written");
+    if (!out) throw InputError(output, "cannot be written (" + std::string(std::strerror(errno)) + ")");
   });
   if (!csv.empty()) write_bop_pose_results(csv, records);
   if (!png.empty()) {
     draw_posed_parts(bgr, posed.drawn, camera);
     write_atomically(png, [&](const std::string& tmp) {
-      if (!cv::imwrite(tmp + ".png", bgr)) throw InputError(png, "cannot be written");
+      if (!cv::imwrite(tmp + ".png", bgr)) throw InputError(png, "cannot be written: OpenCV could not encode or save it");
       std::filesystem::rename(tmp + ".png", tmp);
     });
   }

@@ -7,6 +7,7 @@
 #include "host/cli/arguments.h"
 #include "host/cli/commands.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/progress_bar.h"
 #include "host/pose/template_file.h"
 #include "host/synth/part_library.h"
@@ -40,7 +41,7 @@ int run_pose_templates_command(std::vector<std::string> args) {
   const std::string output = take_option(args, "-o");
   TemplateParams params;
   params.views = take_whole_option(args, "--views", params.views, 1, 100000);
-  params.in_plane_steps = take_whole_option(args, "--in-plane", params.in_plane_steps, 1, 3600);
+  params.in_plane_steps = take_whole_option(args, "--in-plane", params.in_plane_steps, 1, 360);
   params.points_per_view = take_whole_option(args, "--points", params.points_per_view, 4, 4096);
   params.crease_degrees = static_cast<float>(take_number_option(args, "--crease", params.crease_degrees));
   if (!(params.crease_degrees > 0.0f && params.crease_degrees < 180.0f)) {
@@ -51,6 +52,7 @@ int run_pose_templates_command(std::vector<std::string> args) {
   if (args.size() != 1) throw InputError("pose-templates", "expected one CAD folder, got " + std::to_string(args.size()) + " arguments");
   if (output.empty()) throw InputError("option -o", "missing: the template file to write");
   if (std::filesystem::is_directory(output)) throw InputError(output, "is a folder; -o names the template file");
+  check_output_file(output);
   params.check();
   const PartLibrary library = PartLibrary::load_folder(args[0]);
 

@@ -10,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/pfm.h"
 #include "host/render/mesh.h"
 #include "host/render/part_row.h"
@@ -104,13 +105,22 @@ void set_seed_and_threads(ShadingOptions& shading, double seed, double threads) 
   shading.threads = static_cast<int>(threads);
 }
 
+constexpr int kMaxImageSide = 16384;
+
 // --size and --focal: the principal point at the image centre.
 PinholeCamera camera_of_options(const std::string& size_text, double focal_option) {
   PinholeCamera camera;
   if (!size_text.empty()) {
     const std::vector<double> size = parse_numbers("--size", size_text, 'x', 2);
-    camera.width = positive_int("--size", size[0]);
-    camera.height = positive_int("--size", size[1]);
+    // The synth commands' bound: larger pictures would only fail in the allocation.
+    for (const double side : size) {
+      if (!(side >= 1.0 && side <= kMaxImageSide) || side != std::floor(side)) {
+        throw InputError("option --size", "expected WxH with 1 <= W, H <= " + std::to_string(kMaxImageSide) +
+                                              ", got '" + size_text + "'");
+      }
+    }
+    camera.width = static_cast<int>(size[0]);
+    camera.height = static_cast<int>(size[1]);
   }
   camera.fx = camera.fy = focal_option != 0.0 ? focal_option : camera.width;
   camera.cx = (camera.width - 1) / 2.0;
@@ -146,13 +156,7 @@ RenderOptions parse_render_options(std::vector<std::string> args) {
   }
   options.shading.check();
   // Every output's folder is checked before the meshes are read.
-  for (const std::string& path : {options.output, options.depth_path, options.mask_path}) {
-    if (path.empty()) continue;
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
-      throw InputError(path, "cannot be written: its folder does not exist");
-    }
-  }
+  for (const std::string& path : {options.output, options.depth_path, options.mask_path}) check_output_file(path);
   options.meshes = args;
   return options;
 }

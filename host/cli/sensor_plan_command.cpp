@@ -195,6 +195,9 @@ int run_sensor_plan_command(std::vector<std::string> args) {
   reject_unknown_options(args);
   if (!args.empty()) throw InputError("sensor-plan", "unexpected argument '" + args[0] + "' (all inputs are options)");
 
+  // The output folder is checked (and its staging folder made) before the plan is computed.
+  std::optional<StagedFolder> staged;
+  if (!output.empty()) staged.emplace(output, overwrite, "-o");
   const SensorPlan plan = make_sensor_plan(inputs);
   // A volume partly outside the views is what the report is for; one entirely outside
   // means the options are wrong.
@@ -203,13 +206,12 @@ int run_sensor_plan_command(std::vector<std::string> args) {
                      "no part of it is seen by both cameras and the projector; check --focal/--hfov, "
                      "--doffs, --baseline and --projector-fov");
   }
-  if (!output.empty()) {
-    StagedFolder staged(output, overwrite, "-o");
-    dataset_files::write_text(staged.path() + "/report.md", plan_markdown(plan));
-    dataset_files::write_text(staged.path() + "/report.json", plan_json(plan));
-    write_picture(staged.path() + "/top.png", draw_top_view(plan.rig, inputs.volume, plan.coverage));
-    write_picture(staged.path() + "/side.png", draw_side_view(plan.rig, inputs.volume, plan.coverage));
-    staged.commit();
+  if (staged) {
+    dataset_files::write_text(staged->path() + "/report.md", plan_markdown(plan));
+    dataset_files::write_text(staged->path() + "/report.json", plan_json(plan));
+    write_picture(staged->path() + "/top.png", draw_top_view(plan.rig, inputs.volume, plan.coverage));
+    write_picture(staged->path() + "/side.png", draw_side_view(plan.rig, inputs.volume, plan.coverage));
+    staged->commit();
   }
   std::cout << plan_table(plan);
   if (!output.empty()) std::cout << "written: " << output << "/{report.md, report.json, top.png, side.png}\n";

@@ -19,6 +19,7 @@
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
+#include "host/io/output_path.h"
 #include "host/io/middeval3_files.h"
 #include "host/io/middlebury_v2.h"
 #include "host/io/pfm.h"
@@ -150,11 +151,7 @@ void check_opencv_outputs(const StereoOutputs& out, const std::optional<OpenCvMa
 void check_output_folders(const StereoOutputs& out, const CloudOutputOptions& cloud_options) {
   for (const std::string& path : {out.output, out.png, out.raw, out.raw_right, out.planes, out.conf, out.conf_png,
                                   cloud_options.ply, cloud_options.depth, cloud_options.render}) {
-    if (path.empty()) continue;
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
-      throw InputError(path, "cannot be written: its folder does not exist");
-    }
+    check_output_file(path);
   }
 }
 

@@ -3,6 +3,7 @@
 // (`flexsight eval-pick`): the report's header, the models the scoring needs, and one
 // bin picked and scored.
 #include <opencv2/core.hpp>
+#include <map>
 #include <set>
 #include <string>
 
@@ -15,9 +16,15 @@ namespace flexsight {
 // The report before any bin: its inputs and the detector's classes.
 PickReport pick_report_header(const std::string& bins_dir, const PickSettings& settings, const PickSession& session);
 
-// The error models of the bins' ground-truth parts (`truth_obj_ids`, named after
-// `bins_dir` in errors) and of every class the detector knows (named after its model).
-PoseScoringModels load_pick_scoring_models(std::set<int> truth_obj_ids, const std::string& bins_dir,
+// The error models of the bins' ground-truth parts (`truth_sources`: obj_id -> the file
+// named in errors) and of every class the detector knows (named after its model).
+// Every file of one bin read and checked as the run will use it, before the first bin
+// is picked: the calibration (its focal length before the disparity range), both pairs'
+// sizes against each other and the calibration, `stereo`'s limits, the one image of
+// ground truth, the disparity truth and its mask. InputError naming the file.
+void check_bin_inputs(const BinFiles& files, const StereoParams& stereo, bool passive_stereo);
+
+PoseScoringModels load_pick_scoring_models(std::map<int, std::string> truth_sources,
                                            const PickSettings& settings, const PickSession& session,
                                            const std::string& models_info);
 

@@ -41,6 +41,14 @@ std::set<int> bin_obj_ids(const std::vector<std::string>& bins) {
   return ids;
 }
 
+std::map<int, std::string> bin_truth_sources(const std::vector<std::string>& bins) {
+  std::map<int, std::string> sources;
+  for (const std::string& bin : bins) {
+    for (const auto& [obj_id, source] : ground_truth_sources(BopReader(bin))) sources.emplace(obj_id, source);
+  }
+  return sources;
+}
+
 BinPickScore score_pick_on_bin(const std::string& bin, const PickResult& result, const cv::Mat& no_pattern_disparity,
                                const PoseScoringModels& models, const std::string& cad,
                                const std::string& models_info) {

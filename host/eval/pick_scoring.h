@@ -4,6 +4,7 @@
 // the matcher's bad-2 with and without the pattern, and the detections for the mAP.
 // `flexsight eval-pick` adds the bins up (pick_report.h).
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct BinPickScore {
 
 // The obj_ids the scoring needs models of: every ground-truth part of the bins.
 std::set<int> bin_obj_ids(const std::vector<std::string>& bins);
+// The same obj_ids, each with the scene_gt.json of the first bin that holds it.
+std::map<int, std::string> bin_truth_sources(const std::vector<std::string>& bins);
 
 // `bin`: a synth-bin folder; `result`: pick on its im0.png / im1.png; `no_pattern`: the
 // matcher's disparity on its passive pair (empty: not run). InputError naming the file

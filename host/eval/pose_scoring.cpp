@@ -93,6 +93,16 @@ std::set<int> ground_truth_obj_ids(const BopReader& reader) {
   return ids;
 }
 
+std::map<int, std::string> ground_truth_sources(const BopReader& reader) {
+  std::map<int, std::string> sources;
+  for (std::size_t i = 0; i < reader.size(); ++i) {
+    for (const PartAnnotation& part : reader.record(i).parts) {
+      sources.emplace(part.obj_id, (std::filesystem::path(reader.scene_dir(i)) / "scene_gt.json").string());
+    }
+  }
+  return sources;
+}
+
 PoseReport score_pose_estimates(const PoseScoringInput& input, const PoseScoringModels& models) {
   const auto by_image = estimates_by_image(input);
   std::map<int, const PoseErrorModel*> model_views;

@@ -36,6 +36,10 @@ PoseScoringModels load_pose_scoring_models(const std::set<int>& obj_ids, const s
 // The obj_ids of the data set's ground truth (all images).
 std::set<int> ground_truth_obj_ids(const BopReader& reader);
 
+// Each obj_id of the data set's ground truth with the scene_gt.json that first names it:
+// the file an error about that object points the user to.
+std::map<int, std::string> ground_truth_sources(const BopReader& reader);
+
 struct PoseScoringInput {
   const BopReader* reader = nullptr;
   std::string dataset;          // the reader's folder, for the report

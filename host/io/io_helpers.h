@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "host/io/input_error.h"
+#include "host/io/png_structure.h"
 
 namespace flexsight::io_detail {
 
@@ -86,9 +87,11 @@ inline std::string size_text(const cv::Size& size) {
 }
 
 // cv::imread with IMREAD_UNCHANGED (keeps 16-bit and alpha), with the file checks
-// above and OpenCV's exceptions turned into InputError.
+// above, a PNG's chunks checked first (png_structure.h) and OpenCV's exceptions turned
+// into InputError.
 inline cv::Mat imread_unchanged(const std::string& path) {
   require_readable_file(path);
+  check_png_structure(path);
   cv::Mat image;
   try {
     image = cv::imread(path, cv::IMREAD_UNCHANGED);
