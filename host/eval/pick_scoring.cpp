@@ -64,14 +64,8 @@ BinPickScore score_pick_on_bin(const std::string& bin, const PickResult& result,
   input.models_info = models_info;
   input.progress = false;
   for (const PickCandidate& c : result.picks) {
-    PoseEstimateRecord r;
-    r.scene_id = ref.scene_id;
-    r.im_id = ref.im_id;
-    r.obj_id = c.obj_id;
-    r.score = c.pick_score;
-    r.R = c.pose.R;
-    r.t = c.pose.t;
-    input.records.push_back(r);
+    input.records.push_back(
+        pose_estimate_record(ref.scene_id, ref.im_id, c.obj_id, c.pick_score, c.pose.R, c.pose.t));
   }
   const PoseReport report = score_pose_estimates(input, models);
   score.targets_visib50 = static_cast<int>(report.total.add_visib50.targets);
