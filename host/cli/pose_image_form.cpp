@@ -21,6 +21,7 @@
 #include "host/io/input_error.h"
 #include "host/io/pfm.h"
 #include "host/pose/pose_drawing.h"
+#include "host/geometry/stereo_rig.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -167,7 +168,7 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
                                      " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
                                      std::to_string(bgr.rows));
   }
-  const PinholeCamera camera = left_camera(rig, bgr.size());
+  const PinholeCamera camera = stereo_rig_from(rig, bgr.cols, bgr.rows).left;
   const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
   const cv::Mat input = read_pfm(depth_source);
   if (input.size() != bgr.size()) {
