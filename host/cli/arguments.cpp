@@ -82,6 +82,11 @@ std::string take_option(std::vector<std::string>& args, const std::string& name)
   return "";
 }
 
+void take_options(std::vector<std::string>& args,
+                  const std::vector<std::pair<std::string, std::string*>>& options) {
+  for (const auto& [name, destination] : options) *destination = take_option(args, name);
+}
+
 bool take_flag(std::vector<std::string>& args, const std::string& name) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == name) {

@@ -25,6 +25,11 @@ std::optional<OpenCvMatcher> take_opencv_method(std::vector<std::string>& args);
 // Removes "--name value" from args and returns value, or "" if absent.
 std::string take_option(std::vector<std::string>& args, const std::string& name);
 
+// take_option for each (name, destination) in turn: a command's plain string options as
+// one table.
+void take_options(std::vector<std::string>& args,
+                  const std::vector<std::pair<std::string, std::string*>>& options);
+
 // Removes "--name value" from args and returns value as a number, or `fallback` if
 // absent. Throws InputError ("option --name: expected a number ...") when malformed.
 double take_number_option(std::vector<std::string>& args, const std::string& name,

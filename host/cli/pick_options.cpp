@@ -8,6 +8,7 @@
 #include "host/detect/detector_model.h"
 #include "host/io/calibration.h"
 #include "host/io/input_error.h"
+#include "host/dataset/detection_data.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -62,7 +63,7 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   if (settings.templates.empty()) {
     throw InputError("option --templates", "missing (make them once with flexsight pose-templates CAD_DIR -o FILE)");
   }
-  if (settings.cad.empty()) settings.cad = default_pose_cad_dir();
+  if (settings.cad.empty()) settings.cad = default_cad_dir();
   return options;
 }
 
@@ -71,7 +72,7 @@ std::string pick_options_help() {
   help << "  --templates T      the parts' edge templates (flexsight pose-templates CAD_DIR -o T)\n"
           "  --cad DIR          the CAD models the templates were made from (default:\n"
           "                     "
-       << default_pose_cad_dir() << ")\n"
+       << default_cad_dir() << ")\n"
        << "  --model M.onnx     the detector (default: the shipped one, " << default_detector_model_path() << ")\n"
        << "  --tile auto|off|N  detect in tiles: auto (default) sizes them so a part spans\n"
           "                     about 0.29 of a tile, as in the detector's training images,\n"

@@ -22,6 +22,7 @@
 #include "host/io/input_error.h"
 #include "host/io/staged_folder.h"
 #include "host/pose/dataset_posing.h"
+#include "host/dataset/detection_data.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -89,7 +90,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   const std::int64_t limit = limit_text.empty() ? -1 : parse_whole_number("--limit", limit_text, 1, 1000000000);
   const int threads = threads_text.empty() ? omp_get_max_threads()
                                            : static_cast<int>(parse_whole_number("--threads", threads_text, 1, 1024));
-  if (cad.empty()) cad = default_pose_cad_dir();
+  if (cad.empty()) cad = default_cad_dir();
   if (models_info.empty()) models_info = default_models_info_beside(cad);
 
   const BopReader reader(dataset);
@@ -136,7 +137,7 @@ int run_pose_command(std::vector<std::string> args) {
   std::string cad = take_option(args, "--cad");
   PoseEstimatorParams params;
   params.refinement = parse_refinement(take_option(args, "--refinement"));
-  return run_pose_image_form(input, args, cad.empty() ? default_pose_cad_dir() : cad, params);
+  return run_pose_image_form(input, args, cad.empty() ? default_cad_dir() : cad, params);
 }
 
 }  // namespace flexsight

@@ -24,6 +24,7 @@
 #include "host/io/output_path.h"
 #include "host/io/pfm.h"
 #include "host/pose/pose_drawing.h"
+#include "host/geometry/stereo_rig.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -81,14 +82,14 @@ struct PoseImageOptions {
 
 PoseImageOptions parse_pose_image_options(std::vector<std::string>& args) {
   PoseImageOptions o;
-  o.depth_path = take_option(args, "--depth");
-  o.disparity_path = take_option(args, "--disparity");
-  o.calib_path = take_option(args, "--calib");
-  o.boxes_path = take_option(args, "--boxes");
-  o.templates = take_option(args, "--templates");
-  o.output = take_option(args, "-o");
-  o.csv = take_option(args, "--csv");
-  o.png = take_option(args, "--png");
+  take_options(args, {{"--depth", &o.depth_path},
+                      {"--disparity", &o.disparity_path},
+                      {"--calib", &o.calib_path},
+                      {"--boxes", &o.boxes_path},
+                      {"--templates", &o.templates},
+                      {"-o", &o.output},
+                      {"--csv", &o.csv},
+                      {"--png", &o.png}});
   o.min_score = take_number_option(args, "--score", 0.3);
   reject_unknown_options(args);
   if (!args.empty()) throw InputError("pose", "unexpected argument '" + args[0] + "'");
@@ -120,11 +121,7 @@ PosedBoxes pose_boxes(const std::vector<BoxInput>& boxes, const PoseModels& mode
   for (const BoxInput& b : boxes) {
     const PoseModel& model = models.model(b.obj_id, boxes_path);
     const PoseEstimate e = estimator.estimate(model, bgr, depth, camera, b.box);
-    PoseEstimateRecord r;
-    r.obj_id = b.obj_id;
-    r.score = e.score;
-    r.R = e.pose.R;
-    r.t = e.pose.t;
+    PoseEstimateRecord r = pose_estimate_record(0, 0, b.obj_id, e.score, e.pose.R, e.pose.t);
     r.time_s = e.times.total_ms() / 1000.0;
     records.push_back(r);
     dataset_files::Json R = dataset_files::Json::array(), t = dataset_files::Json::array();
@@ -175,7 +172,7 @@ int run_pose_image_form(const std::string& image_path, std::vector<std::string>&
                                      " images, " + image_path + " is " + std::to_string(bgr.cols) + " x " +
                                      std::to_string(bgr.rows));
   }
-  const PinholeCamera camera = left_camera(rig, bgr.size());
+  const PinholeCamera camera = stereo_rig_from(rig, bgr.cols, bgr.rows).left;
   const std::string depth_source = depth_path.empty() ? disparity_path : depth_path;
   const cv::Mat input = read_pfm(depth_source);
   if (input.size() != bgr.size()) {

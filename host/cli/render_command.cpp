@@ -131,9 +131,9 @@ PinholeCamera camera_of_options(const std::string& size_text, double focal_optio
 
 RenderOptions parse_render_options(std::vector<std::string> args) {
   RenderOptions options;
-  options.output = take_option(args, "-o");
-  options.depth_path = take_option(args, "--depth");
-  options.mask_path = take_option(args, "--mask");
+  take_options(args, {{"-o", &options.output},
+                      {"--depth", &options.depth_path},
+                      {"--mask", &options.mask_path}});
   const std::string size_text = take_option(args, "--size");
   const double focal_option = take_number_option(args, "--focal", 0.0);
   options.layout.distance = take_number_option(args, "--distance", 0.0);

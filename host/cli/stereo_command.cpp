@@ -127,12 +127,12 @@ StereoOutputs take_stereo_outputs(std::vector<std::string>& args) {
   StereoOutputs out;
   out.output = take_option(args, "-o");
   if (out.output.empty()) out.output = take_option(args, "--output");
-  out.png = take_option(args, "--png");
-  out.raw = take_option(args, "--raw");
-  out.raw_right = take_option(args, "--raw-right");
-  out.planes = take_option(args, "--planes");
-  out.conf = take_option(args, "--conf");
-  out.conf_png = take_option(args, "--conf-png");
+  take_options(args, {{"--png", &out.png},
+                      {"--raw", &out.raw},
+                      {"--raw-right", &out.raw_right},
+                      {"--planes", &out.planes},
+                      {"--conf", &out.conf},
+                      {"--conf-png", &out.conf_png}});
   return out;
 }
 

@@ -57,8 +57,9 @@ ParamOption float_option(const char* name, float StereoParams::*field, const cha
           [field](const StereoParams& p) { return float_text(p.*field); }};
 }
 
-const std::vector<ParamOption>& param_options() {
-  static const std::vector<ParamOption> options = {
+// The method, the disparity range and the matching cost.
+std::vector<ParamOption> matching_options() {
+  return {
       {"method", "ppms (pyramidal, default), pms (flat), or OpenCV's sgbm / bm (peers)",
        [](StereoParams& p, const std::string& v) {
          if (v == "ppms") {
@@ -96,6 +97,14 @@ const std::vector<ParamOption>& param_options() {
                    "weight of the 5x5 census distance (0 = off)"),
       float_option("census-cap", &StereoParams::census_cap,
                    "census distance counted up to this many bits (24 = no cap)"),
+      // clang-format on
+  };
+}
+
+// The PatchMatch iterations and their random search.
+std::vector<ParamOption> search_options() {
+  return {
+      // clang-format off
       integer_option("iterations", &StereoParams::iterations,
                      "PMS: iterations on its only level"),
       integer_option("iterations-coarsest", &StereoParams::iterations_coarsest,
@@ -120,6 +129,14 @@ const std::vector<ParamOption>& param_options() {
                    "normal perturbation of the first trial"),
       integer_option("coarsest-width", &StereoParams::coarsest_width,
                      "PPMS: widest allowed coarsest level"),
+      // clang-format on
+  };
+}
+
+// The left/right check, the filling of what it rejects, the medians and the speckle filters.
+std::vector<ParamOption> filling_options() {
+  return {
+      // clang-format off
       integer_option("refill-iterations", &StereoParams::refill_iterations,
                      "iterations after the finest level's check-and-fill (0 = none)"),
       flag_option("refill-unsure-only", &StereoParams::refill_unsure_only,
@@ -152,6 +169,12 @@ const std::vector<ParamOption>& param_options() {
       float_option("textureless-spread", &StereoParams::textureless_spread,
                    "windows with a grey spread below this fail the check (0 = off)"),
       // clang-format on
+  };
+}
+
+// How a run goes: its seed and threads.
+std::vector<ParamOption> run_options() {
+  return {
       {"seed", "random generator seed",
        [](StereoParams& p, const std::string& v) {
          p.seed = static_cast<std::uint32_t>(parse_whole_number("--seed", v, 0, 0xffffffffLL));
@@ -160,6 +183,17 @@ const std::vector<ParamOption>& param_options() {
       integer_option("threads", &StereoParams::threads,
                      "reference-path threads (0 = all cores)"),
   };
+}
+
+const std::vector<ParamOption>& param_options() {
+  static const std::vector<ParamOption> options = [] {
+    std::vector<ParamOption> all;
+    for (const std::vector<ParamOption>& group :
+         {matching_options(), search_options(), filling_options(), run_options()}) {
+      all.insert(all.end(), group.begin(), group.end());
+    }
+    return all;
+  }();
   return options;
 }
 

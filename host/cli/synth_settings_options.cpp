@@ -8,9 +8,29 @@
 #include "host/io/input_error.h"
 
 namespace flexsight {
+namespace {
+
+// The options of the background crop and the camera effects, which the full and the
+// semi-synthetic settings share (BackgroundEffects).
+std::vector<SettingOption> background_effect_options(BackgroundEffects& s) {
+  return {
+      {"min-crop-scale", &s.min_crop_scale, nullptr, "smallest background crop"},
+      {"crop-aspect-change", &s.max_crop_aspect_change, nullptr, "log aspect change of the crop"},
+      {"background-flip", &s.background_flip_probability, nullptr, "chance the background is mirrored"},
+      {"blur-probability", &s.blur_probability, nullptr, "chance of a blur"},
+      {"max-blur", &s.max_blur_sigma, nullptr, "largest blur sigma, pixels"},
+      {"max-noise", &s.max_noise_sigma, nullptr, "largest noise sigma, grey levels"},
+  };
+}
+
+void append(std::vector<SettingOption>& options, const std::vector<SettingOption>& more) {
+  options.insert(options.end(), more.begin(), more.end());
+}
+
+}  // namespace
 
 std::vector<SettingOption> full_synthetic_setting_options(FullSyntheticSettings& s) {
-  return {
+  std::vector<SettingOption> options = {
       {"fov", &s.horizontal_fov_degrees, nullptr, "horizontal field of view, degrees"},
       {"min-parts", nullptr, &s.min_parts, "fewest parts per image"},
       {"max-parts", nullptr, &s.max_parts, "most parts per image"},
@@ -33,23 +53,21 @@ std::vector<SettingOption> full_synthetic_setting_options(FullSyntheticSettings&
       {"camera-light", &s.camera_light_probability, nullptr, "chance of a light at the camera"},
       {"min-ambient", &s.min_ambient, nullptr, "least ambient light"},
       {"max-ambient", &s.max_ambient, nullptr, "most ambient light"},
-      {"min-crop-scale", &s.min_crop_scale, nullptr, "smallest background crop"},
-      {"crop-aspect-change", &s.max_crop_aspect_change, nullptr, "log aspect change of the crop"},
-      {"background-flip", &s.background_flip_probability, nullptr, "chance the background is mirrored"},
-      {"blur-probability", &s.blur_probability, nullptr, "chance of a blur"},
-      {"max-blur", &s.max_blur_sigma, nullptr, "largest blur sigma, pixels"},
-      {"max-noise", &s.max_noise_sigma, nullptr, "largest noise sigma, grey levels"},
+  };
+  append(options, background_effect_options(s));
+  append(options, {
       {"hflip", &s.horizontal_flip_probability, nullptr, "chance of a horizontal flip"},
       {"vflip", &s.vertical_flip_probability, nullptr, "chance of a vertical flip"},
       {"max-rotation", &s.max_rotation_degrees, nullptr, "largest in-plane rotation, degrees"},
       {"depth-noise", &s.depth_noise.disparity_sigma, nullptr, "stored depth: disparity noise, pixels"},
       {"depth-baseline", &s.depth_noise.baseline_mm, nullptr, "stored depth: stereo baseline, mm"},
       {"depth-dropout", nullptr, &s.depth_noise.edge_dropout, "stored depth: no depth this near steps"},
-  };
+  });
+  return options;
 }
 
 std::vector<SettingOption> semi_synthetic_setting_options(SemiSyntheticSettings& s) {
-  return {
+  std::vector<SettingOption> options = {
       {"min-parts", nullptr, &s.min_parts, "fewest parts per image"},
       {"max-parts", nullptr, &s.max_parts, "most parts per image"},
       {"min-size", &s.min_part_size, nullptr, "smallest patch diagonal, fraction of the width"},
@@ -61,13 +79,9 @@ std::vector<SettingOption> semi_synthetic_setting_options(SemiSyntheticSettings&
       {"max-contrast", &s.max_contrast, nullptr, "largest contrast gain"},
       {"min-visible", &s.min_visible_fraction, nullptr, "least visible fraction of a part"},
       {"pose-attempts", nullptr, &s.pose_attempts, "placements tried per part under the cap"},
-      {"min-crop-scale", &s.min_crop_scale, nullptr, "smallest background crop"},
-      {"crop-aspect-change", &s.max_crop_aspect_change, nullptr, "log aspect change of the crop"},
-      {"background-flip", &s.background_flip_probability, nullptr, "chance the background is mirrored"},
-      {"blur-probability", &s.blur_probability, nullptr, "chance of a blur"},
-      {"max-blur", &s.max_blur_sigma, nullptr, "largest blur sigma, pixels"},
-      {"max-noise", &s.max_noise_sigma, nullptr, "largest noise sigma, grey levels"},
   };
+  append(options, background_effect_options(s));
+  return options;
 }
 
 void take_settings_options(std::vector<std::string>& args, const std::vector<SettingOption>& options) {

@@ -21,6 +21,19 @@ struct PoseEstimateRecord {
   double time_s = -1.0;  // BOP: seconds for the image, -1 when unknown
 };
 
+// The record of one estimate, its time unknown.
+inline PoseEstimateRecord pose_estimate_record(int scene_id, int im_id, int obj_id, double score,
+                                               const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  PoseEstimateRecord record;
+  record.scene_id = scene_id;
+  record.im_id = im_id;
+  record.obj_id = obj_id;
+  record.score = score;
+  record.R = R;
+  record.t = t;
+  return record;
+}
+
 // Writes the header and one line per record, in the given order, atomically (a failed
 // write leaves any earlier file as it was). Numbers are printed as the shortest text
 // that reads back to the same double, so reading the file gives the records back

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "host/io/id_colour.h"
+#include "host/io/tile_sheet.h"
 
 namespace flexsight {
 namespace {
@@ -53,29 +54,14 @@ cv::Mat detection_contact_sheet(const std::vector<cv::Mat>& images,
                                 const DetectionSheetOptions& options) {
   if (images.empty()) return cv::Mat();
   std::vector<cv::Mat> tiles;
-  int tile_height = 0;
   for (size_t i = 0; i < images.size(); ++i) {
     const double scale = static_cast<double>(options.tile_width) / images[i].cols;
     tiles.push_back(draw_detections(images[i], found.at(i), scale));
     // The tile's number, black on white, at the lower left where boxes rarely start.
     draw_label(tiles.back(), "#" + std::to_string(i + 1), cv::Point(0, tiles.back().rows - 1),
                cv::Scalar(255, 255, 255));
-    tile_height = std::max(tile_height, tiles.back().rows);
   }
-  constexpr int kGap = 4;
-  const int columns = std::min<int>(options.columns, static_cast<int>(tiles.size()));
-  const int rows = (static_cast<int>(tiles.size()) + columns - 1) / columns;
-  cv::Mat sheet(rows * (tile_height + kGap) + kGap, columns * (options.tile_width + kGap) + kGap,
-                CV_8UC3, cv::Scalar(255, 255, 255));
-  for (size_t i = 0; i < tiles.size(); ++i) {
-    const int column = static_cast<int>(i) % columns, row = static_cast<int>(i) / columns;
-    const cv::Mat& tile = tiles[i];
-    const int width = std::min(tile.cols, options.tile_width);  // rounding may add a column
-    tile(cv::Rect(0, 0, width, tile.rows))
-        .copyTo(sheet(cv::Rect(kGap + column * (options.tile_width + kGap),
-                               kGap + row * (tile_height + kGap), width, tile.rows)));
-  }
-  return sheet;
+  return tile_sheet(tiles, options.tile_width, options.columns, WideTiles::kTrim);
 }
 
 }  // namespace flexsight

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/eval/json_number.h"
 #include "host/io/report_text.h"
 
 namespace flexsight {
@@ -16,11 +17,6 @@ const char* const kDetectionConventions =
     "image and class, area range all). Means over the classes with ground truth.";
 
 namespace {
-
-// A fraction, or null where it is undefined (JSON has no NaN).
-nlohmann::ordered_json fraction(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
 
 int crowd_regions(const DetectionScores& scores) {
   int count = 0;
@@ -82,26 +78,24 @@ std::string to_json(const DetectionReport& report) {
   json["detections"] = s.detections;
   json["classes_with_ground_truth"] = s.classes_with_ground_truth;
   json["iou_threshold"] = s.iou_threshold;
-  json["map50"] = fraction(s.map50);
-  json["map50_95"] = fraction(s.map50_95);
-  json["ap50_coco"] = fraction(s.ap50_coco);
-  json["ap75"] = fraction(s.ap75);
-  json["map_at_iou_threshold"] = fraction(s.map);
+  json["map50"] = number_or_null(s.map50);
+  json["map50_95"] = number_or_null(s.map50_95);
+  json["ap50_coco"] = number_or_null(s.ap50_coco);
+  json["ap75"] = number_or_null(s.ap75);
+  json["map_at_iou_threshold"] = number_or_null(s.map);
   json["conventions"] = kDetectionConventions;
   json["classes"] = nlohmann::ordered_json::array();
   for (const ClassDetectionScores& c : s.classes) {
-    nlohmann::ordered_json entry;
-    entry["category_id"] = c.category_id;
-    entry["name"] = c.name;
-    entry["ground_truth"] = c.ground_truth;
-    entry["crowd"] = c.crowd;
-    entry["detections"] = c.detections;
-    entry["voc_ap50"] = fraction(c.voc_ap50);
-    entry["voc_ap_at_iou_threshold"] = fraction(c.voc_ap);
-    entry["coco_ap"] = fraction(c.coco_ap);
-    entry["coco_ap50"] = fraction(c.coco_ap50);
-    entry["coco_ap75"] = fraction(c.coco_ap75);
-    json["classes"].push_back(std::move(entry));
+    json["classes"].push_back({{"category_id", c.category_id},
+                               {"name", c.name},
+                               {"ground_truth", c.ground_truth},
+                               {"crowd", c.crowd},
+                               {"detections", c.detections},
+                               {"voc_ap50", number_or_null(c.voc_ap50)},
+                               {"voc_ap_at_iou_threshold", number_or_null(c.voc_ap)},
+                               {"coco_ap", number_or_null(c.coco_ap)},
+                               {"coco_ap50", number_or_null(c.coco_ap50)},
+                               {"coco_ap75", number_or_null(c.coco_ap75)}});
   }
   nlohmann::ordered_json recall = nlohmann::ordered_json::array();
   for (std::size_t r = 0; r < s.mean_precision_101.size(); ++r) {

@@ -1,31 +1,24 @@
 #include "host/eval/pick_report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "host/eval/json_number.h"
+#include "host/io/report_text.h"
 
 namespace flexsight {
 namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
-std::string percent(double fraction) {
-  if (!std::isfinite(fraction)) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * fraction);
-  return text;
+// The report's number with `decimals` digits, "n/a" where it is undefined.
+std::string number_cell(double value, int decimals, const std::string& unit = "") {
+  return fixed_decimals(value, decimals, "n/a", unit);
 }
 
-std::string fixed(double value, const char* format) {
-  if (!std::isfinite(value)) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
+std::string percent(double fraction) { return number_cell(100.0 * fraction, 1, " %"); }
 
 Json stage_json(const PickStageSeconds& s) {
   return {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
@@ -119,23 +112,23 @@ std::string to_markdown(const PickReport& report) {
      << "| pose recall (parts >= 50 % visible within ADD(-S) 0.1 d) | " << percent(report.pose_recall) << " |\n"
      << "| top-ranked part correct | " << percent(report.top1_correct) << " of bins |\n"
      << "| detection mAP@0.5 | " << percent(report.detection_map50) << " |\n"
-     << "| stereo bad-2, with the pattern | " << fixed(report.bad2_pattern, "%.2f %%") << " |\n"
-     << "| stereo bad-2, without the pattern | " << fixed(report.bad2_no_pattern, "%.2f %%") << " |\n"
-     << "| seconds per bin | " << fixed(report.seconds_per_bin, "%.1f") << " |\n\n"
+     << "| stereo bad-2, with the pattern | " << number_cell(report.bad2_pattern, 2, " %") << " |\n"
+     << "| stereo bad-2, without the pattern | " << number_cell(report.bad2_no_pattern, 2, " %") << " |\n"
+     << "| seconds per bin | " << number_cell(report.seconds_per_bin, 1) << " |\n\n"
      << "| stage | mean seconds |\n|---|---|\n"
-     << "| stereo | " << fixed(report.mean_seconds.stereo, "%.2f") << " |\n"
-     << "| depth | " << fixed(report.mean_seconds.depth, "%.2f") << " |\n"
-     << "| detection | " << fixed(report.mean_seconds.detection, "%.2f") << " |\n"
-     << "| pose | " << fixed(report.mean_seconds.pose, "%.2f") << " |\n"
-     << "| ranking | " << fixed(report.mean_seconds.ranking, "%.3f") << " |\n\n"
+     << "| stereo | " << number_cell(report.mean_seconds.stereo, 2) << " |\n"
+     << "| depth | " << number_cell(report.mean_seconds.depth, 2) << " |\n"
+     << "| detection | " << number_cell(report.mean_seconds.detection, 2) << " |\n"
+     << "| pose | " << number_cell(report.mean_seconds.pose, 2) << " |\n"
+     << "| ranking | " << number_cell(report.mean_seconds.ranking, 3) << " |\n\n"
      << "| bin | parts | >= 50 % visible | posed | picks | top pick | its ADD(-S)/d | bad-2 pattern | bad-2 none | seconds |\n"
      << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BinPickScore& bin : report.bins) {
     md << "| " << std::filesystem::path(bin.bin).filename().string() << " | " << bin.parts << " | "
        << bin.targets_visib50 << " | " << bin.posed_visib50 << " | " << bin.picks << " | "
        << (bin.top1_obj_id == 0 ? std::string("none") : "obj " + std::to_string(bin.top1_obj_id) + (bin.top1_correct ? " right" : " wrong"))
-       << " | " << fixed(bin.top1_error_ratio, "%.3f") << " | " << fixed(bin.bad2_pattern, "%.2f") << " | "
-       << fixed(bin.bad2_no_pattern, "%.2f") << " | " << fixed(bin.seconds.total(), "%.1f") << " |\n";
+       << " | " << number_cell(bin.top1_error_ratio, 3) << " | " << number_cell(bin.bad2_pattern, 2) << " | "
+       << number_cell(bin.bad2_no_pattern, 2) << " | " << number_cell(bin.seconds.total(), 1) << " |\n";
   }
   return md.str();
 }

@@ -7,6 +7,7 @@
 #include "host/eval/metrics.h"
 #include "host/eval/pose_errors.h"
 #include "host/io/input_error.h"
+#include "host/io/middeval3_files.h"
 #include "host/io/pfm.h"
 
 namespace flexsight {
@@ -72,14 +73,8 @@ BinPickScore score_pick_on_bin(const std::string& bin, const PickResult& result,
   input.models_info = models_info;
   input.progress = false;
   for (const PickCandidate& c : result.picks) {
-    PoseEstimateRecord r;
-    r.scene_id = ref.scene_id;
-    r.im_id = ref.im_id;
-    r.obj_id = c.obj_id;
-    r.score = c.pick_score;
-    r.R = c.pose.R;
-    r.t = c.pose.t;
-    input.records.push_back(r);
+    input.records.push_back(
+        pose_estimate_record(ref.scene_id, ref.im_id, c.obj_id, c.pick_score, c.pose.R, c.pose.t));
   }
   const PoseReport report = score_pose_estimates(input, models);
   score.targets_visib50 = static_cast<int>(report.total.add_visib50.targets);
@@ -115,12 +110,12 @@ BinPickScore score_pick_on_bin(const std::string& bin, const PickResult& result,
         {d.category_id, {d.box[0], d.box[1], d.box[2] - d.box[0], d.box[3] - d.box[1]}, d.score});
   }
 
-  const fs::path folder(bin);
-  const cv::Mat truth = read_pfm((folder / "disp0GT.pfm").string());
-  const cv::Mat nonocc = cv::imread((folder / "mask0nocc.png").string(), cv::IMREAD_GRAYSCALE);
-  if (nonocc.empty()) throw InputError((folder / "mask0nocc.png").string(), "is missing or unreadable");
+  const MiddEval3Files files = middeval3_files(bin);
+  const cv::Mat truth = read_pfm(files.left_truth);
+  const cv::Mat nonocc = cv::imread(files.nonocc_mask, cv::IMREAD_GRAYSCALE);
+  if (nonocc.empty()) throw InputError(files.nonocc_mask, "is missing or unreadable");
   if (truth.size() != result.disparity.size() || nonocc.size() != truth.size()) {
-    throw InputError((folder / "disp0GT.pfm").string(), "is not the size of the bin's images");
+    throw InputError(files.left_truth, "is not the size of the bin's images");
   }
   score.bad2_pattern = bad2_percent(result.disparity, truth, nonocc);
   score.bad2_no_pattern = bad2_percent(no_pattern_disparity, truth, nonocc);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/eval/json_number.h"
 #include "host/io/report_text.h"
 
 namespace flexsight {
@@ -21,8 +22,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json fraction(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
 std::string ar_definition(const PoseScores& s) {
   return s.has_vsd ? "mean of ar_vsd, ar_mssd, ar_mspd"
                    : "mean of ar_mssd and ar_mspd: the data set has no depth, so no VSD";
@@ -30,12 +29,12 @@ std::string ar_definition(const PoseScores& s) {
 
 // The score keys shared by the total and each object.
 void put_scores(Json& json, const PoseScores& s) {
-  json["add_recall"] = fraction(s.add_recall());
-  json["add_recall_visib50"] = fraction(s.add_recall_visib50());
-  json["ar"] = fraction(s.ar());
-  json["ar_vsd"] = fraction(s.ar_vsd());
-  json["ar_mssd"] = fraction(s.ar_mssd());
-  json["ar_mspd"] = fraction(s.ar_mspd());
+  json["add_recall"] = number_or_null(s.add_recall());
+  json["add_recall_visib50"] = number_or_null(s.add_recall_visib50());
+  json["ar"] = number_or_null(s.ar());
+  json["ar_vsd"] = number_or_null(s.ar_vsd());
+  json["ar_mssd"] = number_or_null(s.ar_mssd());
+  json["ar_mspd"] = number_or_null(s.ar_mspd());
 }
 
 Json counts_json(const PoseScores& s) {
@@ -52,7 +51,7 @@ Json curve(const RecallCounts& counts) {
   Json list = Json::array();
   const std::vector<double> recalls = counts.recalls();
   for (std::size_t k = 0; k < counts.thresholds.size(); ++k) {
-    list.push_back({{"threshold", counts.thresholds[k]}, {"recall", fraction(recalls[k])}});
+    list.push_back({{"threshold", counts.thresholds[k]}, {"recall", number_or_null(recalls[k])}});
   }
   return list;
 }
@@ -68,11 +67,11 @@ Json vsd_curves(const PoseScores& s, const PoseEvalSettings& settings) {
     Json row = Json::array();
     double sum = 0.0;
     for (std::size_t j = 0; j < per_tau; ++j) {
-      row.push_back(fraction(recalls[t * per_tau + j]));
+      row.push_back(number_or_null(recalls[t * per_tau + j]));
       sum += recalls[t * per_tau + j];
     }
     entry["recalls"] = row;
-    entry["mean"] = fraction(sum / static_cast<double>(per_tau));
+    entry["mean"] = number_or_null(sum / static_cast<double>(per_tau));
     list.push_back(entry);
   }
   return list;

@@ -30,7 +30,7 @@ std::string markdown_header() {
 std::string markdown_stats(const ErrorStats& stats, double seconds) {
   std::string cells;
   for (double percent : stats.bad_percent) cells += " " + fixed_decimals(percent, kPercentDecimals) + " |";
-  cells += " " + (std::isfinite(stats.avg_error) ? fixed_decimals(stats.avg_error, kErrorDecimals) : std::string("n/a")) + " |";
+  cells += " " + fixed_decimals(stats.avg_error, kErrorDecimals, "n/a") + " |";
   cells += " " + fixed_decimals(stats.density_percent, kPercentDecimals) + " |";
   // Results read from files have no matcher time.
   cells += " " + (seconds > 0 ? fixed_decimals(seconds, kSecondsDecimals) : std::string("-")) + " |";
@@ -64,7 +64,7 @@ double mean_available(const std::vector<SceneReport>& scenes, Value value) {
 }
 
 std::string cell(double value, int decimals) {
-  return std::isfinite(value) ? fixed_decimals(value, decimals) : std::string("-");
+  return fixed_decimals(value, decimals, "-");
 }
 
 // Confidence thresholds and depth error, when any scene has them.
@@ -170,7 +170,7 @@ std::string json_string(const std::string& text) {
 // JSON has no NaN or infinity; such a value can only come from a bug, and null keeps
 // the document parseable while making the problem visible.
 std::string json_number(double value, int decimals = kJsonDecimals) {
-  return std::isfinite(value) ? fixed_decimals(value, decimals) : "null";
+  return fixed_decimals(value, decimals, "null");
 }
 
 std::string json_stats(const ErrorStats& stats, const std::string& indent) {

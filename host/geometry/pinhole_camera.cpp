@@ -26,4 +26,14 @@ Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& p) const {
   return {fx * p.x() / p.z() + cx, fy * p.y() / p.z() + cy};
 }
 
+PinholeCamera centred_camera(int width, int height, double focal) {
+  PinholeCamera camera;
+  camera.width = width;
+  camera.height = height;
+  camera.fx = camera.fy = focal;
+  camera.cx = 0.5 * (width - 1);
+  camera.cy = 0.5 * (height - 1);
+  return camera;
+}
+
 }  // namespace flexsight

@@ -20,4 +20,8 @@ struct PinholeCamera {
   Eigen::Vector2d project(const Eigen::Vector3d& p) const;
 };
 
+// A camera of `width` x `height` pixels, focal length `focal` pixels on both axes, whose
+// principal point is the image's centre.
+PinholeCamera centred_camera(int width, int height, double focal);
+
 }  // namespace flexsight

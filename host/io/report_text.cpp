@@ -11,9 +11,14 @@ std::string fixed_decimals(double value, int decimals) {
   return buffer;
 }
 
+std::string fixed_decimals(double value, int decimals, const std::string& undefined,
+                           const std::string& unit) {
+  return std::isfinite(value) ? fixed_decimals(value, decimals) + unit : undefined;
+}
+
 std::string fraction_text(double value) {
   constexpr int kFractionDecimals = 4;
-  return std::isfinite(value) ? fixed_decimals(value, kFractionDecimals) : "-";
+  return fixed_decimals(value, kFractionDecimals, "-");
 }
 
 std::string threshold_label(double threshold) {

@@ -8,6 +8,11 @@ namespace flexsight {
 // `value` with `decimals` digits after the point ("%.*f"); NaN and infinity as printf writes them.
 std::string fixed_decimals(double value, int decimals);
 
+// The same, and `unit` after it, or only `undefined` where the value is NaN or infinite
+// (reports write "-" or "n/a" there).
+std::string fixed_decimals(double value, int decimals, const std::string& undefined,
+                           const std::string& unit = "");
+
 // A fraction or score with four decimals, "-" where it is undefined (NaN, infinity).
 std::string fraction_text(double value);
 

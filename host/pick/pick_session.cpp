@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/geometry/depth_from_disparity.h"
+#include "host/geometry/stereo_rig.h"
 #include "host/io/input_error.h"
 #include "host/stereo/disparity_upsampling.h"
 #include "host/stereo/stereo_backend.h"
@@ -169,7 +170,7 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
                               const cv::Mat& texture_left_rgb8) {
   const PickSettings& settings = impl_->settings;
   PickResult result;
-  result.camera = left_camera(rig, left_rgb8.size());
+  result.camera = stereo_rig_from(rig, left_rgb8.cols, left_rgb8.rows).left;
 
   auto start = Clock::now();
   ProgressCallback progress;

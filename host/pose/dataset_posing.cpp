@@ -31,14 +31,8 @@ void pose_image(PoseEstimator& estimator, const BopReader& reader, std::size_t i
     if (!poses_box(part, min_visib)) continue;
     const cv::Rect box(part.bbox_visib.x, part.bbox_visib.y, part.bbox_visib.width, part.bbox_visib.height);
     const PoseEstimate estimate = estimator.estimate(models.model(part.obj_id, "data set"), bgr, image.depth, camera, box);
-    PoseEstimateRecord record;
-    record.scene_id = image.scene_id;
-    record.im_id = image.im_id;
-    record.obj_id = part.obj_id;
-    record.score = estimate.score;
-    record.R = estimate.pose.R;
-    record.t = estimate.pose.t;
-    records.push_back(record);
+    records.push_back(pose_estimate_record(image.scene_id, image.im_id, part.obj_id, estimate.score,
+                                           estimate.pose.R, estimate.pose.t));
     times.push_back(estimate.times);
     progress.advance();
   }

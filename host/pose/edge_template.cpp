@@ -191,10 +191,8 @@ PartTemplates make_part_templates(const Mesh& mesh, int obj_id, const std::strin
   // store everything relative to the model's own origin.
   const Eigen::Vector3d centre = mesh.bounds.center().cast<double>();
   const double distance = kDistanceInDiameters * mesh.diameter;
-  PinholeCamera camera;
-  camera.width = camera.height = params.render_size;
-  camera.fx = camera.fy = kSpan * params.render_size * kDistanceInDiameters;
-  camera.cx = camera.cy = 0.5 * (params.render_size - 1);
+  const PinholeCamera camera = centred_camera(params.render_size, params.render_size,
+                                              kSpan * params.render_size * kDistanceInDiameters);
 
   const std::vector<Eigen::Vector3d> directions = fibonacci_sphere(params.views);
   part.views.resize(directions.size());

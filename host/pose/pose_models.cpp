@@ -1,26 +1,9 @@
 #include "host/pose/pose_models.h"
 
-#include <cstdlib>
-
 #include "host/io/input_error.h"
 #include "host/pose/template_file.h"
 
 namespace flexsight {
-
-std::string default_pose_cad_dir() {
-  const char* data = std::getenv("FLEXSIGHT_DETECTION_DATA");
-  return std::string(data != nullptr && *data != '\0' ? data : FLEXSIGHT_DEFAULT_DETECTION_DATA) + "/cad/tless";
-}
-
-PinholeCamera left_camera(const StereoCamera& rig, cv::Size size) {
-  PinholeCamera camera;
-  camera.fx = camera.fy = rig.Q(2, 3);
-  camera.cx = -rig.Q(0, 3);
-  camera.cy = -rig.Q(1, 3);
-  camera.width = size.width;
-  camera.height = size.height;
-  return camera;
-}
 
 PinholeCamera camera_of(const AnnotatedImage& image) {
   PinholeCamera camera;

@@ -14,13 +14,6 @@
 
 namespace flexsight {
 
-// The T-LESS CAD folder of the detection data ($FLEXSIGHT_DETECTION_DATA/cad/tless, or
-// the build's default), where pose and pick look when no --cad is given.
-std::string default_pose_cad_dir();
-
-// The pinhole camera of the left view of a rectified rig (its Q), for images of `size`.
-PinholeCamera left_camera(const StereoCamera& rig, cv::Size size);
-
 // The pinhole camera of a BOP image (its K and size).
 PinholeCamera camera_of(const AnnotatedImage& image);
 

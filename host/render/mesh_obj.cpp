@@ -11,10 +11,8 @@
 namespace flexsight::mesh_files {
 namespace {
 
-using detail::checked_index;
-using detail::fail;
-using detail::parse_number;
-using detail::shown;
+// The helpers every reader shares (mesh_file_text.h).
+using namespace detail;
 
 using Words = std::vector<std::string_view>;
 using Corner = std::array<std::int64_t, 2>;  // position, normal (-1: none)

@@ -14,11 +14,8 @@
 namespace flexsight::mesh_files {
 namespace {
 
-using detail::checked_index;
-using detail::fail;
-using detail::parse_number;
-using detail::shown;
-using detail::Tokens;
+// The helpers every reader shares (mesh_file_text.h).
+using namespace detail;
 
 enum class Kind { kSigned, kUnsigned, kFloat };
 

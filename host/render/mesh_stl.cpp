@@ -8,13 +8,8 @@
 namespace flexsight::mesh_files {
 namespace {
 
-using detail::checked_index;
-using detail::fail;
-using detail::little_float;
-using detail::little_u32;
-using detail::parse_number;
-using detail::shown;
-using detail::Tokens;
+// The helpers every reader shares (mesh_file_text.h).
+using namespace detail;
 
 RawMesh read_binary_stl(const std::string& path, const std::string& bytes, std::uint32_t facets) {
   RawMesh mesh;

@@ -36,6 +36,15 @@ struct View {
   cv::Mat1f unseen;  // rows z (near first), columns across
 };
 
+// The working volume in `view`: lo..hi across, its depth range, and where no camera sees it.
+void show_volume(View& view, double lo, double hi, const WorkingVolume& volume, const cv::Mat1f& unseen) {
+  view.box_lo = lo;
+  view.box_hi = hi;
+  view.near_z = volume.near_z();
+  view.far_z = volume.far_z();
+  view.unseen = unseen;
+}
+
 cv::Mat draw(const View& view) {
   // The frustums are drawn a little past the far plane, so that their spread there shows.
   const double z_end = view.far_z * 1.12;
@@ -122,11 +131,7 @@ cv::Mat draw_top_view(const StereoRig& rig, const WorkingVolume& volume, const V
   view.devices = {{-rig.baseline_mm / 2.0, kRed, "C1"},
                   {rig.baseline_mm / 2.0, kRed, "C2"},
                   {rig.projector.centre_x, kDarkGrey, "P"}};
-  view.box_lo = volume.min_x();
-  view.box_hi = volume.max_x();
-  view.near_z = volume.near_z();
-  view.far_z = volume.far_z();
-  view.unseen = coverage.top_unseen;
+  show_volume(view, volume.min_x(), volume.max_x(), volume, coverage.top_unseen);
   return draw(view);
 }
 
@@ -139,11 +144,7 @@ cv::Mat draw_side_view(const StereoRig& rig, const WorkingVolume& volume, const 
   const double tp = tan_half(rig.projector.vfov_deg);
   view.frustums.push_back({0.0, -tp, tp, kOrange});
   view.devices = {{0.0, kRed, "C1 C2 P"}};
-  view.box_lo = volume.min_y();
-  view.box_hi = volume.max_y();
-  view.near_z = volume.near_z();
-  view.far_z = volume.far_z();
-  view.unseen = coverage.side_unseen;
+  show_volume(view, volume.min_y(), volume.max_y(), volume, coverage.side_unseen);
   return draw(view);
 }
 

@@ -2,19 +2,21 @@
 
 #include <algorithm>
 
+#include "host/dataset/bop_layout.h"
 #include "host/io/input_error.h"
+#include "host/io/middeval3_files.h"
 
 namespace flexsight {
 
 namespace fs = std::filesystem;
 
 BinFiles bin_files(const fs::path& dir, bool passive_stereo) {
-  BinFiles files{dir.string(), (dir / "im0.png").string(), (dir / "im1.png").string(),
-                 (dir / "im0_passive.png").string(), (dir / "im1_passive.png").string(),
-                 (dir / "calib.txt").string()};
-  std::vector<std::string> required = {files.left, files.right, files.calib, (dir / "disp0GT.pfm").string(),
-                                       (dir / "mask0nocc.png").string(), (dir / "scene_gt.json").string(),
-                                       (dir / "scene_gt_info.json").string()};
+  const MiddEval3Files scene = middeval3_files(dir);
+  BinFiles files{dir.string(), scene.left, scene.right, scene.left_passive,
+                 (dir / middeval3::kRightPassive).string(), scene.calib};
+  std::vector<std::string> required = {files.left, files.right, files.calib, scene.left_truth,
+                                       scene.nonocc_mask, (dir / bop_layout::kSceneGt).string(),
+                                       (dir / bop_layout::kSceneGtInfo).string()};
   if (passive_stereo) {
     required.push_back(files.left_passive);
     required.push_back(files.right_passive);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "host/io/id_colour.h"
+#include "host/io/tile_sheet.h"
 
 namespace flexsight {
 namespace {
@@ -38,23 +39,8 @@ cv::Mat make_contact_sheet(const std::vector<AnnotatedImage>& images,
                            const ContactSheetOptions& options) {
   if (images.empty()) return cv::Mat();
   std::vector<cv::Mat> tiles;
-  int tile_height = 0;
-  for (const AnnotatedImage& image : images) {
-    tiles.push_back(draw_tile(image, options.tile_width));
-    tile_height = std::max(tile_height, tiles.back().rows);
-  }
-  constexpr int kGap = 4;
-  const int columns = std::min<int>(options.columns, static_cast<int>(tiles.size()));
-  const int rows = (static_cast<int>(tiles.size()) + columns - 1) / columns;
-  cv::Mat sheet(rows * (tile_height + kGap) + kGap, columns * (options.tile_width + kGap) + kGap,
-                CV_8UC3, cv::Scalar(255, 255, 255));
-  for (size_t i = 0; i < tiles.size(); ++i) {
-    const int column = static_cast<int>(i) % columns, row = static_cast<int>(i) / columns;
-    tiles[i].copyTo(sheet(cv::Rect(kGap + column * (options.tile_width + kGap),
-                                   kGap + row * (tile_height + kGap), tiles[i].cols,
-                                   tiles[i].rows)));
-  }
-  return sheet;
+  for (const AnnotatedImage& image : images) tiles.push_back(draw_tile(image, options.tile_width));
+  return tile_sheet(tiles, options.tile_width, options.columns, WideTiles::kKeep);
 }
 
 }  // namespace flexsight

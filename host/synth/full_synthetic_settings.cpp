@@ -11,23 +11,15 @@ namespace flexsight {
 using namespace synth_detail;
 
 PinholeCamera FullSyntheticSettings::camera() const {
-  PinholeCamera camera;
-  camera.width = width;
-  camera.height = height;
-  camera.fx = camera.fy = 0.5 * width / std::tan(0.5 * horizontal_fov_degrees * M_PI / 180.0);
-  camera.cx = 0.5 * (width - 1);
-  camera.cy = 0.5 * (height - 1);
-  return camera;
+  return centred_camera(width, height,
+                        0.5 * width / std::tan(0.5 * horizontal_fov_degrees * M_PI / 180.0));
 }
 
 void FullSyntheticSettings::check() const {
-  int_in_range("width", width, 8, 16384);
-  int_in_range("height", height, 8, 16384);
+  image_size(width, height);
   in_range("fov", horizontal_fov_degrees, 1.0, 170.0);
 
-  int_in_range("min-parts", min_parts, 1, 100);
-  int_in_range("max-parts", max_parts, 1, 100);
-  ordered("min-parts", min_parts, "max-parts", max_parts);
+  part_count(min_parts, max_parts);
   if (!(std::isfinite(min_part_size) && min_part_size > 0.0)) {
     fail_option("min-size", "must be positive (got " + number_text(min_part_size) + ")");
   }

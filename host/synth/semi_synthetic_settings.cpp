@@ -8,22 +8,11 @@ namespace flexsight {
 
 using namespace synth_detail;
 
-PinholeCamera SemiSyntheticSettings::camera() const {
-  PinholeCamera camera;
-  camera.width = width;
-  camera.height = height;
-  camera.fx = camera.fy = width;
-  camera.cx = 0.5 * (width - 1);
-  camera.cy = 0.5 * (height - 1);
-  return camera;
-}
+PinholeCamera SemiSyntheticSettings::camera() const { return centred_camera(width, height, width); }
 
 void SemiSyntheticSettings::check() const {
-  int_in_range("width", width, 8, 16384);
-  int_in_range("height", height, 8, 16384);
-  int_in_range("min-parts", min_parts, 1, 100);
-  int_in_range("max-parts", max_parts, 1, 100);
-  ordered("min-parts", min_parts, "max-parts", max_parts);
+  image_size(width, height);
+  part_count(min_parts, max_parts);
   in_range("min-size", min_part_size, 1e-3, 4.0);
   in_range("max-size", max_part_size, 1e-3, 4.0);
   ordered("min-size", min_part_size, "max-size", max_part_size);

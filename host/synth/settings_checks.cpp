@@ -40,5 +40,15 @@ void ordered(const std::string& min_option, double lo, const std::string& max_op
 
 void probability(const std::string& option, double value) { in_range(option, value, 0.0, 1.0); }
 
+void image_size(int width, int height) {
+  int_in_range("width", width, 8, 16384);
+  int_in_range("height", height, 8, 16384);
+}
+
+void part_count(int min_parts, int max_parts) {
+  int_in_range("min-parts", min_parts, 1, 100);
+  int_in_range("max-parts", max_parts, 1, 100);
+  ordered("min-parts", min_parts, "max-parts", max_parts);
+}
 
 }  // namespace flexsight::synth_detail
