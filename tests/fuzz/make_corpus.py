@@ -72,6 +72,18 @@ fs.write('image_size', np.array([225, 187], dtype=np.int32))
 fs.release()
 w('opencv_camera/stereo_size_m.yml', read(path))
 
+# pick's calibration against its pair's size: width, height (uint16 little-endian), the
+# file's format (0 calib.txt, 1 .yml, 2 .xml), then the file. The pair's own size, the
+# size halved (a uniform resize) and one that is not a resize.
+teddy = read(f'{D}/TeddyH/calib.txt')
+for name, (width, height), kind, body in [
+        ('teddyh_own_size', (225, 187), 0, teddy),
+        ('teddyh_halved', (112, 93), 0, teddy),
+        ('teddyh_not_a_resize', (225, 100), 0, teddy),
+        ('opencv_yml', (225, 187), 1, read('tests/fuzz/corpus/opencv_camera/stereo.yml')),
+        ('opencv_xml_doubled', (450, 374), 2, read('tests/fuzz/corpus/opencv_camera/stereo.xml'))]:
+    w(f'pick_calibration/{name}', struct.pack('<HHB', width, height, kind) + body)
+
 # KITTI 16-bit disparities, one with no-data pixels.
 d = np.arange(48, dtype=np.uint16).reshape(6, 8) * 300
 d[0, 0] = 0
