@@ -173,6 +173,8 @@ int run_eval_det_command(std::vector<std::string> args) {
   if (!any_truth) {
     throw InputError(truth.source(), "has no ground-truth box (no visible object): nothing to score");
   }
+  // The detector reads every image; a results file needs only the montage's first ones.
+  truth.check_images(options.results.empty() ? truth.images().size() : static_cast<std::size_t>(options.montage));
   // The output folder is checked (and its staging folder made) before the detector runs.
   StagedFolder staged(options.out, options.overwrite, "--out");
   const DetectionResults detections = collect_detections(options, truth);

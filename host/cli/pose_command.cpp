@@ -94,9 +94,10 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   if (models_info.empty()) models_info = default_models_info_beside(cad);
 
   const BopReader reader(dataset);
+  const std::size_t image_count = limit < 0 ? reader.size() : std::min<std::size_t>(reader.size(), limit);
+  for (std::size_t i = 0; i < image_count; ++i) reader.check_boxes_inside_image(i, true);
   StagedFolder staged(out, overwrite, "--out");
   const PoseModels models(templates, cad);
-  const std::size_t image_count = limit < 0 ? reader.size() : std::min<std::size_t>(reader.size(), limit);
   const std::size_t boxes = count_boxes_to_pose(reader, image_count, models, min_visib);
   if (boxes == 0) throw InputError(dataset, "has no ground-truth box at least " + std::to_string(min_visib) + " visible");
   // The scoring's inputs (every ground-truth part's mesh and models_info entry) are

@@ -5,6 +5,7 @@
 
 #include "host/dataset/bop_layout.h"
 #include "host/dataset/dataset_files.h"
+#include "host/io/image_header.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/io_helpers.h"
@@ -23,8 +24,8 @@ int scene_id_of(const std::string& dir) {
 }
 
 // BOP stores color images in rgb/ and, for gray-only sensors (ITODD), in gray/; the
-// format differs between data sets (T-LESS png, the PBR sets jpg).
-std::string find_rgb(const std::string& scene_dir, int im_id) {
+// format differs between data sets (T-LESS png, the PBR sets jpg). Empty when none is there.
+std::string existing_rgb(const std::string& scene_dir, int im_id) {
   for (const char* folder : {"rgb", "gray"}) {
     for (const char* extension : {".png", ".jpg", ".jpeg", ".tif"}) {
       const std::string path =
@@ -32,6 +33,12 @@ std::string find_rgb(const std::string& scene_dir, int im_id) {
       if (dataset_files::is_file(path)) return path;
     }
   }
+  return {};
+}
+
+std::string find_rgb(const std::string& scene_dir, int im_id) {
+  const std::string path = existing_rgb(scene_dir, im_id);
+  if (!path.empty()) return path;
   throw InputError(scene_dir + "/rgb/" + bop_layout::six_digits(im_id) + ".png",
                    "does not exist (nor does a .jpg, .jpeg or .tif, in rgb/ or gray/)");
 }
@@ -177,6 +184,19 @@ AnnotatedImage BopReader::load(std::size_t i) const {
     }
   }
   return image;
+}
+
+void BopReader::check_boxes_inside_image(std::size_t i, bool require_image) const {
+  const Entry& entry = index_.at(i);
+  const Scene& scene = scenes_[entry.scene];
+  if (!scene.json.has_gt_info) return;
+  const std::string rgb = require_image ? find_rgb(scene.dir, entry.im_id) : existing_rgb(scene.dir, entry.im_id);
+  if (rgb.empty()) return;
+  const cv::Size size = image_size_from_header(rgb);
+  const std::vector<PartAnnotation>& parts = scene.json.images.at(entry.im_id).parts;
+  for (std::size_t gt = 0; gt < parts.size(); ++gt) {
+    require_inside(parts[gt].bbox_visib, size, scene.dir, entry.im_id, static_cast<int>(gt));
+  }
 }
 
 }  // namespace flexsight

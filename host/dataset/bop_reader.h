@@ -44,6 +44,12 @@ class BopReader {
   // the rgb's, or a bbox_visib that reaches beyond the image. Thread-safe.
   AnnotatedImage load(std::size_t i) const;
 
+  // For the up-front pass of a command that will load image i: its size read from its
+  // file's header (image_header.h), and every bbox_visib of scene_gt_info.json checked to
+  // lie inside it, the error naming that file as load() would. `require_image`: a missing
+  // image is an error; otherwise (a command that only scores boxes) it is skipped.
+  void check_boxes_inside_image(std::size_t i, bool require_image) const;
+
  private:
   struct Scene {
     std::string dir;

@@ -6,6 +6,7 @@
 
 #include "host/dataset/dataset_files.h"
 #include "host/dataset/gt_info.h"
+#include "host/io/image_header.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/physical_checks.h"
@@ -186,20 +187,32 @@ CocoReader::CocoReader(std::string path) : path_(std::move(path)), dataset_(read
   }
 }
 
+std::string CocoReader::image_path(std::size_t index) const {
+  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  return (folder / dataset_.images.at(index).file_name).string();
+}
+
+void CocoReader::require_entry_size(std::size_t index, const cv::Size& size) const {
+  const CocoImage& entry = dataset_.images.at(index);
+  if (size.width == entry.width && size.height == entry.height) return;
+  throw InputError(image_path(index), "is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                                          " but " + path_ + " says " + std::to_string(entry.width) + "x" +
+                                          std::to_string(entry.height));
+}
+
+void CocoReader::check_image_size(std::size_t index, bool require_image) const {
+  const std::string path = image_path(index);
+  if (!require_image && !dataset_files::is_file(path)) return;
+  require_entry_size(index, image_size_from_header(path));
+}
+
 AnnotatedImage CocoReader::load(std::size_t index) const {
   const CocoImage& entry = dataset_.images.at(index);
-  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
-  const std::string rgb_path = (folder / entry.file_name).string();
   AnnotatedImage image;
   image.scene_id = entry.scene_id >= 0 ? entry.scene_id : 0;
   image.im_id = entry.im_id >= 0 ? entry.im_id : static_cast<int>(entry.id);
-  image.rgb = load_rgb8(rgb_path);
-  if (image.rgb.cols != entry.width || image.rgb.rows != entry.height) {
-    throw InputError(rgb_path, "is " + std::to_string(image.rgb.cols) + "x" +
-                                   std::to_string(image.rgb.rows) + " but " + path_ + " says " +
-                                   std::to_string(entry.width) + "x" +
-                                   std::to_string(entry.height));
-  }
+  image.rgb = load_rgb8(image_path(index));
+  require_entry_size(index, image.rgb.size());
   for (std::size_t a : annotations_of_image_[index]) {
     const CocoAnnotation& annotation = dataset_.annotations[a];
     PartAnnotation part;

@@ -36,7 +36,17 @@ class CocoReader {
   // for an unreadable image or one whose size differs from the entry's. Thread-safe.
   AnnotatedImage load(std::size_t index) const;
 
+  // For the up-front pass of a command that will load image `index`: its size read from
+  // its file's header (image_header.h) checked against the file's width and height (the
+  // annotations were checked against those when the file was read), the error naming
+  // the image as load() would. `require_image`: a missing image is an error; otherwise
+  // (a command that only scores boxes) it is skipped.
+  void check_image_size(std::size_t index, bool require_image) const;
+
  private:
+  std::string image_path(std::size_t index) const;
+  void require_entry_size(std::size_t index, const cv::Size& size) const;
+
   std::string path_;
   CocoDataset dataset_;
   std::vector<std::vector<std::size_t>> annotations_of_image_;  // by image index

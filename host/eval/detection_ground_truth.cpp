@@ -116,4 +116,15 @@ cv::Mat DetectionGroundTruth::load_rgb(std::size_t i) const {
   return coco_ ? coco_->load(index).rgb : bop_->load(index).rgb;
 }
 
+void DetectionGroundTruth::check_images(std::size_t loaded_count) const {
+  for (std::size_t i = 0; i < reader_index_.size(); ++i) {
+    const bool loaded = i < loaded_count;
+    if (coco_) {
+      coco_->check_image_size(reader_index_[i], loaded);
+    } else {
+      bop_->check_boxes_inside_image(reader_index_[i], loaded);
+    }
+  }
+}
+
 }  // namespace flexsight

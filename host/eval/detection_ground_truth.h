@@ -49,6 +49,11 @@ class DetectionGroundTruth {
   // Image i's picture, RGB (CV_8UC3). Throws InputError naming a missing or unreadable
   // image file.
   cv::Mat load_rgb(std::size_t i) const;
+  // The up-front pass of a command that will load images 0..loaded_count-1: their sizes
+  // read from the files' headers and checked against the boxes (BOP) or the file's sizes
+  // (COCO); images past loaded_count are checked when they are there. Throws InputError
+  // naming the file, as load_rgb would later.
+  void check_images(std::size_t loaded_count) const;
 
  private:
   void read_coco_file(const std::string& path);

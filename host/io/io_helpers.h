@@ -86,15 +86,20 @@ inline std::string size_text(const cv::Size& size) {
   return std::to_string(size.width) + "x" + std::to_string(size.height);
 }
 
-// cv::imread with IMREAD_UNCHANGED (keeps 16-bit and alpha), with the file checks
-// above, a PNG's chunks checked first (png_structure.h) and OpenCV's exceptions turned
-// into InputError.
+// The image at `path` decoded as cv::imread with IMREAD_UNCHANGED would (keeps 16-bit
+// and alpha), with the file checks above, a PNG's chunks checked first (png_structure.h)
+// and OpenCV's exceptions turned into InputError. The file is read once: the check and
+// the decoder share its bytes.
 inline cv::Mat imread_unchanged(const std::string& path) {
   require_readable_file(path);
-  check_png_structure(path);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw InputError(path, "cannot be read");
+  check_png_structure(path, bytes);
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
+    if (!bytes.empty()) image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
     throw InputError(path, "cannot be decoded as an image (" + e.err + ")");
   }

@@ -1,10 +1,10 @@
 #include "host/io/png_structure.h"
 
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <zlib.h>
 
 #include "host/io/input_error.h"
 
@@ -13,20 +13,9 @@ namespace {
 
 constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
-// CRC-32 as the PNG specification defines it (ISO 3309, polynomial 0xedb88320).
-std::uint32_t crc32(const unsigned char* bytes, std::size_t size) {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  std::uint32_t c = 0xffffffffu;
-  for (std::size_t i = 0; i < size; ++i) c = table[(c ^ bytes[i]) & 0xffu] ^ (c >> 8);
-  return c ^ 0xffffffffu;
+// zlib's CRC-32 is the one the PNG specification defines (ISO 3309).
+std::uint32_t png_crc(const unsigned char* bytes, std::size_t size) {
+  return static_cast<std::uint32_t>(::crc32(0L, bytes, static_cast<uInt>(size)));
 }
 
 std::uint32_t big_endian(const unsigned char* bytes) {
@@ -38,7 +27,10 @@ std::uint32_t big_endian(const unsigned char* bytes) {
 
 void check_png_structure(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  check_png_structure(path, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+}
+
+void check_png_structure(const std::string& path, const std::string& file) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(file.data());
   if (file.size() < sizeof kSignature || std::memcmp(bytes, kSignature, sizeof kSignature) != 0) return;
   std::size_t pos = sizeof kSignature;
@@ -56,7 +48,7 @@ void check_png_structure(const std::string& path) {
                                  std::to_string(file.size()) + " bytes)");
     }
     if (first && type != "IHDR") throw InputError(path, "is not a valid PNG: its first chunk is not IHDR");
-    if (crc32(bytes + pos + 4, length + 4) != big_endian(bytes + pos + 8 + length)) {
+    if (png_crc(bytes + pos + 4, length + 4) != big_endian(bytes + pos + 8 + length)) {
       throw InputError(path, "is a damaged PNG: the CRC of its " + type + " chunk" + at + " does not match its bytes");
     }
     if (type == "IEND") return;

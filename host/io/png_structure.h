@@ -7,10 +7,13 @@
 
 namespace flexsight {
 
-// Nothing for a file that is not a PNG (no PNG signature: another decoder's business).
-// For a PNG: InputError naming `path` when a chunk runs past the end of the file, a
-// chunk's CRC does not match its bytes, the first chunk is not IHDR, or the file ends
-// before IEND.
+// Nothing for bytes that are not a PNG (no PNG signature: another decoder's business).
+// For a PNG: InputError naming `path` (where `bytes` came from) when a chunk runs past
+// the end of the file, a chunk's CRC does not match its bytes, the first chunk is not
+// IHDR, or the file ends before IEND.
+void check_png_structure(const std::string& path, const std::string& bytes);
+
+// The same for the file at `path`, read whole.
 void check_png_structure(const std::string& path);
 
 }  // namespace flexsight

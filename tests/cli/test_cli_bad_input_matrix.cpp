@@ -100,6 +100,15 @@ class BadInputMatrix : public Cli {
     broken_scene(root_, "negative_box", "scene_gt_info.json", "\"bbox_visib\": [9, 7, 13, 11]",
                  "\"bbox_visib\": [9, 7, -13, 11]");
     broken_scene(root_, "obj99", "scene_gt.json", "\"obj_id\": 2}", "\"obj_id\": 99}");
+    // A box past the second image's edge: found from the image's header before any work,
+    // not when that image is loaded (for eval-det with a results file: never).
+    broken_scene(root_, "box_past_image", "scene_gt_info.json", "\"bbox_visib\": [20, 10, 7, 5]",
+                 "\"bbox_visib\": [20, 10, 7000, 5]");
+    // A COCO file whose last image is not the size it says.
+    const fs::path coco_copy = root_ / "coco_size";
+    fs::copy(fs::path(FLEXSIGHT_TEST_DATA_DIR) / "detect" / "tless_synth_8", coco_copy, fs::copy_options::recursive);
+    cv::imwrite((coco_copy / "000000" / "rgb" / "000007.jpg").string(),
+                flexsight::testing_support::random_rgb8(320, 300, 5));
     const std::string results = "scene_id,im_id,obj_id,score,R,t,time\n";
     std::ofstream(root_ / "empty.csv");
     std::ofstream(root_ / "header.csv") << results;  // a run that found nothing
@@ -391,6 +400,13 @@ TEST_F(BadInputMatrix, DataSetsOutputsAndBinsAreCheckedBeforeTheWork) {
     cases.push_back({"pose " + broken + " --gt-boxes --templates " + r + "one.tpl --out " + d + "e", broken + "/" + file});
     cases.push_back({"eval-det " + broken + " --results " + d + "existing.json --out " + d + "e", broken + "/" + file});
   }
+  const std::string past = r + "box_past_image/000001";
+  cases.push_back({"pose " + past + " --gt-boxes --templates " + r + "one.tpl --out " + d + "e",
+                   past + "/scene_gt_info.json", "reaches beyond the 32x24 image"});
+  cases.push_back({"eval-det " + past + " --results " + d + "existing.json --montage 0 --out " + d + "e",
+                   past + "/scene_gt_info.json", "reaches beyond the 32x24 image"});
+  cases.push_back({"eval-det " + r + "coco_size --results " + d + "existing.json --montage 0 --out " + d + "e",
+                   r + "coco_size/000000/rgb/000007.jpg", "is 320x300 but"});
   const std::string obj99 = r + "obj99/000001";
   cases.push_back({"eval-pose " + obj99 + " --results " + r + "header.csv --out " + d + "e", obj99 + "/scene_gt.json",
                    "obj_id 99 has no CAD model"});
