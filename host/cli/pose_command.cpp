@@ -57,6 +57,10 @@ void print_help() {
          "  --limit N          data set form: the first N images only (posed and scored)\n"
          "  --refinement R     depth (default: ICP from the template's pose), edges (D2CO\n"
          "                     alone: search + LM on edges) or both (LM, then ICP)\n"
+         "  --edges E          how the edge thresholds meet the image: fixed (grey\n"
+         "                     levels as they are), contrast (the box's grey levels\n"
+         "                     stretched first), noise (kept above the box's\n"
+         "                     gradient noise) or contrast+noise (docs/pose.md)\n"
          "  --threads N        images posed at once (default: all cores)\n"
          "  --overwrite        replace DIR when it is not empty\n";
 }
@@ -68,6 +72,15 @@ PoseRefinement parse_refinement(const std::string& text) {
   throw InputError("option --refinement", "expected both, edges or depth, got '" + text + "'");
 }
 
+DcdParams::EdgeThresholds parse_edges(const std::string& text, DcdParams::EdgeThresholds default_value) {
+  using E = DcdParams::EdgeThresholds;
+  if (text.empty()) return default_value;
+  if (text == "fixed") return E::kFixed;
+  if (text == "contrast") return E::kContrast;
+  if (text == "noise") return E::kNoise;
+  if (text == "contrast+noise") return E::kContrastAndNoise;
+  throw InputError("option --edges", "expected fixed, contrast, noise or contrast+noise, got '" + text + "'");
+}
 
 int run_dataset_form(const std::string& dataset, std::vector<std::string>& args) {
   if (!take_flag(args, "--gt-boxes")) {
@@ -82,6 +95,7 @@ int run_dataset_form(const std::string& dataset, std::vector<std::string>& args)
   std::string models_info = take_option(args, "--models-info");
   PoseEstimatorParams params;
   params.refinement = parse_refinement(take_option(args, "--refinement"));
+  params.dcd.thresholds = parse_edges(take_option(args, "--edges"), params.dcd.thresholds);
   const bool overwrite = take_flag(args, "--overwrite");
   reject_unknown_options(args);
   if (templates.empty()) throw InputError("option --templates", "missing (make them with flexsight pose-templates CAD_DIR -o FILE)");
@@ -138,6 +152,7 @@ int run_pose_command(std::vector<std::string> args) {
   std::string cad = take_option(args, "--cad");
   PoseEstimatorParams params;
   params.refinement = parse_refinement(take_option(args, "--refinement"));
+  params.dcd.thresholds = parse_edges(take_option(args, "--edges"), params.dcd.thresholds);
   return run_pose_image_form(input, args, cad.empty() ? default_cad_dir() : cad, params);
 }
 

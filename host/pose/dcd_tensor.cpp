@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/io/input_error.h"
+#include "host/pose/edge_thresholds.h"
 
 namespace flexsight {
 namespace {
@@ -95,6 +96,9 @@ EdgeMap detect_edges(const cv::Mat& image, const cv::Rect& roi, const DcdParams&
   } else {
     grey = image(outer).clone();
   }
+  const bool stretch = params.thresholds == DcdParams::EdgeThresholds::kContrast ||
+                       params.thresholds == DcdParams::EdgeThresholds::kContrastAndNoise;
+  if (stretch) stretch_contrast(grey);
   if (params.blur_sigma > 0.0) {
     cv::GaussianBlur(grey, grey, cv::Size(), params.blur_sigma, params.blur_sigma);
   }
@@ -103,7 +107,12 @@ EdgeMap detect_edges(const cv::Mat& image, const cv::Rect& roi, const DcdParams&
   cv::Mat dx, dy, edges;
   cv::Sobel(grey, dx, CV_16S, 1, 0, 3);
   cv::Sobel(grey, dy, CV_16S, 0, 1, 3);
-  cv::Canny(dx, dy, edges, params.canny_low, params.canny_high, /*L2gradient=*/true);
+  CannyThresholds canny{params.canny_low, params.canny_high};
+  if (params.thresholds == DcdParams::EdgeThresholds::kNoise ||
+      params.thresholds == DcdParams::EdgeThresholds::kContrastAndNoise) {
+    canny = above_gradient_noise(canny, dx, dy);
+  }
+  cv::Canny(dx, dy, edges, canny.low, canny.high, /*L2gradient=*/true);
 
   const cv::Rect crop(inner.tl() - outer.tl(), inner.size());
   EdgeMap out;
