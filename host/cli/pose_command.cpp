@@ -60,7 +60,8 @@ void print_help() {
          "  --edges E          how the edge thresholds meet the image: fixed (grey\n"
          "                     levels as they are), contrast (the box's grey levels\n"
          "                     stretched first), noise (kept above the box's\n"
-         "                     gradient noise) or contrast+noise (docs/pose.md)\n"
+         "                     gradient noise) or contrast+noise (the default;\n"
+         "                     docs/pose.md)\n"
          "  --threads N        images posed at once (default: all cores)\n"
          "  --overwrite        replace DIR when it is not empty\n";
 }
