@@ -235,7 +235,7 @@ def section(sets, command, images, markdown):
              " red parts seen by both cameras, magenta parts seen by the left one only,"
              " orange walls, blue floor, cyan outside the projector's field.", ""]
     for s in sets:
-        lines += [f"**{s['name']}** (`{s['root']}`, results `{s['results_used']}`)", "",
+        lines += [f"**{s['name']}** (`{s['root']}`, {len(s['scenes'])} bins)", "",
                   table(s["rows"]), ""]
         if images:
             picture = os.path.relpath(s["picture"], os.path.dirname(os.path.abspath(markdown)))
@@ -293,7 +293,6 @@ def main():
         if results is None:
             results = os.path.join(args.out, s["name"])
             run_eval(args.flexsight, s["root"], s["scenes"], args.preset, args.eval_option, results)
-        s["results_used"] = results
         rows, per_scene, pictures = [], [], []
         for scene in s["scenes"]:
             folder = os.path.join(s["root"], scene)
