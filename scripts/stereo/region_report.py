@@ -10,11 +10,11 @@ SET is a folder of scenes in the MiddEval3 layout (each with disp0GT.pfm; `synth
 writes them, ../shared/datasets/active-bins is one). With =RESULTS the disparities are
 read from RESULTS/<scene>_disp.pfm (a `flexsight eval --out` folder); without, the
 script runs `flexsight eval SET --preset P --out DIR/<set name>` first. It writes
-DIR/regions.md and DIR/regions.json; --images DIR2 writes one picture per set,
-DIR2/regions_<set name>.png (per bin: the left view, the ground truth, the result, the
-error coloured by region); --markdown FILE writes the section: into FILE between the
-lines "<!-- region_report:begin -->" and "<!-- region_report:end -->" if FILE exists
-(it must hold them), else as a new file.
+DIR/regions.md and DIR/regions.json (bad-2 null for a region without pixels); --images
+DIR2 writes one picture per set, DIR2/regions_<set name>.png (per bin: the left view,
+the ground truth, the result, the error coloured by region); --markdown FILE writes the
+section: into FILE between the lines "<!-- region_report:begin -->" and
+"<!-- region_report:end -->" if FILE exists (it must hold them), else as a new file.
 
 Regions, a partition of the pixels with finite ground truth:
   parts, both cameras  a part's visible mask (mask_visib/, or bins_figures.py's rule where
@@ -315,16 +315,18 @@ def main():
                                                dither=Image.Dither.NONE)
             save(picture, s["picture"], optimize=True)
         report.append({"set": s["name"], "root": s["root"], "results": results,
-                       "scenes": {label: {k: {"bad2": v[0], "share": v[1]} for k, v in f.items()}
+                       "scenes": {label: {k: {"bad2": v[0] if np.isfinite(v[0]) else None,
+                                              "share": v[1]} for k, v in f.items()}
                                   for label, f in rows}})
         print(f"## {s['name']}\n\n{table(rows)}\n")
     command = args.command or "scripts/stereo/region_report.py " + " ".join(
         shlex.quote(a) for a in sys.argv[1:])
-    text = section(sets, command, args.images, args.markdown or os.path.join(args.out, "regions.md"))
+    markdown = args.markdown or os.path.join(args.out, "regions.md")
+    text = section(sets, command, args.images, markdown)
     with open(os.path.join(args.out, "regions.md"), "w") as f:
         f.write(text)
     with open(os.path.join(args.out, "regions.json"), "w") as f:
-        json.dump(report, f, indent=1, allow_nan=True)
+        json.dump(report, f, indent=1, allow_nan=False)
     if args.markdown:
         write_markdown(args.markdown, text)
 

@@ -52,7 +52,8 @@ def main():
 
     doc = os.path.join(work, "doc.md")
     with open(doc, "w") as f:
-        f.write("# before\n<!-- region_report:begin -->\nold\n<!-- region_report:end -->\n# after\n")
+        f.write("# before\n<!-- region_report:begin -->\nold\n"
+                "<!-- region_report:end -->\n# after\n")
     matched = os.path.join(work, "matched")
     run(bins, "--out", matched, "--flexsight", flexsight, "--images",
         os.path.join(work, "images"), "--markdown", doc)
@@ -101,7 +102,8 @@ def main():
     with open(plain, "w") as f:
         f.write("# a page without the markers\n")
     for arguments, words in (
-            ([f"{bins}={empty}", "--out", os.path.join(work, "x1")], "bin000_disp.pfm: no such file"),
+            ([f"{bins}={empty}", "--out", os.path.join(work, "x1")],
+             "bin000_disp.pfm: no such file"),
             ([empty, "--out", os.path.join(work, "x2")], "no scene folder"),
             ([scene, "--out", os.path.join(work, "x3")], "a scene, not a set"),
             ([bins, "--out", os.path.join(work, "x4"), "--flexsight", os.path.join(work, "none")],
