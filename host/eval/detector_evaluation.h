@@ -17,6 +17,9 @@ struct DetectorRunOptions {
   BackendOptions backend;
   int threads = 0;     // OpenCV's threads (0: its default)
   bool quiet = false;  // no progress line
+  // Square tiles of this many pixels (host/detect/tiled_detection.h, fixed_tiling), the
+  // boxes merged by per-class NMS at detector.iou_threshold; 0: the whole image.
+  int tile = 0;
 };
 
 // The detector of `model_path` on every image of `truth`. A model that knows a category
