@@ -1,6 +1,7 @@
 // flexsight eval-det: scores detections against the ground truth of a BOP or COCO data
 // set (VOC and COCO average precision) and writes a Markdown and a JSON report, the
 // precision-recall curves and a montage of the first images.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -233,10 +234,14 @@ int run_eval_det_command(std::vector<std::string> args) {
   report.dataset_format = truth.format() == DetectionGroundTruth::Format::coco ? "COCO" : "BOP";
   report.detections = detections.source;
   report.detections_format = detections.format;
-  report.scores = evaluate_detections(truth_boxes, detections.per_image, truth.categories(), eval_options);
+  std::vector<DetectionCategory> categories = truth.categories();
+  categories.insert(categories.end(), detections.extra_categories.begin(), detections.extra_categories.end());
+  std::sort(categories.begin(), categories.end(),
+            [](const DetectionCategory& a, const DetectionCategory& b) { return a.id < b.id; });
+  report.scores = evaluate_detections(truth_boxes, detections.per_image, categories, eval_options);
   DetectionBreakdownOptions breakdown_options;
   breakdown_options.recall_score = options.recall_score;
-  report.breakdown = evaluate_breakdown(truth_boxes, detections.per_image, truth.categories(), breakdown_options);
+  report.breakdown = evaluate_breakdown(truth_boxes, detections.per_image, categories, breakdown_options);
   const cv::Mat curves = draw_pr_curves(report.scores);
   const cv::Mat montage = draw_detection_montage(montage_images(truth, detections, options.montage));
 

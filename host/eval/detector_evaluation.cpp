@@ -39,17 +39,25 @@ DetectionResults run_detector(const std::string& model_path, const DetectionGrou
   if (options.threads > 0) cv::setNumThreads(options.threads);
   ComputeBackend backend(options.backend);
   SsdDetector detector(model_path, backend, options.detector);
+  DetectionResults results;
+  bool shares_a_category = false;
   for (const DetectorLabel& label : detector.labels()) {
-    if (!is_truth_category(truth, label.category_id)) {
+    if (is_truth_category(truth, label.category_id)) {
+      shares_a_category = true;
+    } else if (truth.format() == DetectionGroundTruth::Format::bop) {
+      results.extra_categories.push_back({label.category_id, label.name});
+    } else {
       throw InputError(model_path, "detects category " + std::to_string(label.category_id) + " (" +
                                        label.name + "), which " + truth.source() +
                                        " does not have: a model for other parts");
     }
   }
+  if (!shares_a_category) {
+    throw InputError(model_path, "detects none of the objects of " + truth.source() + ": a model for other parts");
+  }
   const TilingPlan tiling = fixed_tiling(options.tile);
   std::cerr << "eval-det: " << truth.images().size() << " images with " << model_path << "; "
             << detector.planned() << "\n";
-  DetectionResults results;
   results.source = model_path;
   results.format = "model run by eval-det";
   if (tiling.tile > 0) {
