@@ -22,9 +22,9 @@ std::string tile_option_help(int column) {
   const std::string indent(static_cast<std::size_t>(column), ' ');
   const std::string name = "  --tile N";
   return name + std::string(static_cast<std::size_t>(column) - name.size(), ' ') +
-         "detect in square tiles of N pixels (64..8192, at most the image's\n" + indent +
-         "shorter side), overlapping by a quarter tile, as pick does (docs/pick.md,\n" + indent +
-         "Tiles); 0 or off: the whole image (default)\n";
+         "detect in square tiles of N pixels (64..8192, at most the\n" + indent +
+         "image's shorter side) overlapping by a quarter tile, as\n" + indent +
+         "pick does; 0 or off: the whole image (default)\n";
 }
 
 void check_tile_fits(int tile, cv::Size image, const std::string& image_name) {

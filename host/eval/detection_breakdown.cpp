@@ -59,12 +59,16 @@ DetectionBreakdown evaluate_breakdown(const std::vector<std::vector<TruthBox>>& 
   }
   if (options.coco_max_detections < 1) throw std::invalid_argument("coco_max_detections must be >= 1");
   const std::vector<ClassBoxes> classes = boxes_by_class(truth, detections, categories);
+  // Every image's boxes class by class (categories' order), as COCOeval with useCats = 0
+  // concatenates them: ties in score and IoU then fall as they do there.
   ClassBoxes all;
   all.truth.resize(truth.size());
   all.detections.resize(truth.size());
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    for (const TruthBox& box : truth[i]) all.truth[i].push_back(&box);
-    for (const DetectedBox& box : detections[i]) all.detections[i].push_back(&box);
+  for (const ClassBoxes& boxes : classes) {
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      all.truth[i].insert(all.truth[i].end(), boxes.truth[i].begin(), boxes.truth[i].end());
+      all.detections[i].insert(all.detections[i].end(), boxes.detections[i].begin(), boxes.detections[i].end());
+    }
   }
   DetectionBreakdown result;
   result.recall_score = options.recall_score;

@@ -58,7 +58,9 @@ struct DetectionBreakdown {
 // ground truth whose box_size_px lies in its range; in it, a detection matched to a box
 // of another size is ignored, and an unmatched one counts as a false positive only when
 // its own size lies in the range (COCO's area ranges, on VOC's matching). Class-agnostic,
-// a part found twice under two classes gives one match and one false positive.
+// a part found twice under two classes gives one match and one false positive; an
+// image's boxes are taken class by class in the order of `categories` (ties in score or
+// IoU fall as in COCOeval with useCats = 0 when the categories ascend).
 DetectionBreakdown evaluate_breakdown(const std::vector<std::vector<TruthBox>>& truth,
                                       const std::vector<std::vector<DetectedBox>>& detections,
                                       const std::vector<DetectionCategory>& categories,
