@@ -280,6 +280,9 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 12 -o " +
            d + "existing.json",
        "--tile"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 64 -o " +
+           d + "existing.json",
+       "--tile", d + "left.png (64x48)"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --stereo-downscale 0 -o " + d + "existing.json",
        "--stereo-downscale"},
