@@ -162,6 +162,21 @@ void print_timing(const StageTimes& times, size_t images, double wall_seconds) {
                median_ms(times.postprocess), wall_seconds > 0.0 ? images / wall_seconds : 0.0);
 }
 
+// The detections of one image, whole or in tiles; a tiled image's stage times add up over
+// its tiles.
+std::vector<ObjectDetection> detect_timed(SsdDetector& detector, const cv::Mat& bgr, const TilingPlan& tiling,
+                                          float iou, DetectionTimes& spent) {
+  const auto detect = [&](const cv::Mat& part) {
+    DetectionTimes tile_spent;
+    std::vector<ObjectDetection> found = detector.detect(part, &tile_spent);
+    spent.preprocess += tile_spent.preprocess;
+    spent.forward += tile_spent.forward;
+    spent.postprocess += tile_spent.postprocess;
+    return found;
+  };
+  return detect_in_tiles(detect, bgr, tiling, iou);
+}
+
 }  // namespace
 
 int run_detect_command(std::vector<std::string> args) {
@@ -205,16 +220,7 @@ int run_detect_command(std::vector<std::string> args) {
     image.image_id = static_cast<int>(i) + 1;
     image.width = rgb.cols;
     image.height = rgb.rows;
-    // A tiled image's stage times add up over its tiles.
-    const auto detect_timed = [&](const cv::Mat& part) {
-      DetectionTimes tile_spent;
-      std::vector<ObjectDetection> found = detector.detect(part, &tile_spent);
-      spent.preprocess += tile_spent.preprocess;
-      spent.forward += tile_spent.forward;
-      spent.postprocess += tile_spent.postprocess;
-      return found;
-    };
-    image.found = detect_in_tiles(detect_timed, bgr, tiling, options.detector.iou_threshold);
+    image.found = detect_timed(detector, bgr, tiling, options.detector.iou_threshold, spent);
     times.preprocess.push_back(spent.preprocess);
     times.forward.push_back(spent.forward);
     times.postprocess.push_back(spent.postprocess);
