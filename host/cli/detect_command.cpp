@@ -17,9 +17,11 @@
 #include "host/cli/commands.h"
 #include "host/cli/detection_outputs.h"
 #include "host/cli/image_inputs.h"
+#include "host/cli/tile_option.h"
 #include "host/detect/detection_drawing.h"
 #include "host/detect/detector_model.h"
 #include "host/detect/ssd_detector.h"
+#include "host/detect/tiled_detection.h"
 #include "host/io/image_io.h"
 #include "host/io/input_error.h"
 #include "host/io/output_path.h"
@@ -58,7 +60,8 @@ void print_help() {
          "  --dnn-target cpu|opencl where OpenCV DNN runs the network (default cpu; opencl: on\n"
          "                          OpenCV's own OpenCL device, GPUs only unless\n"
          "                          OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1)\n"
-         "  --threads N             OpenCV's threads (network, resizing); 0 = all cores (default)\n"
+      << tile_option_help(26)
+      << "  --threads N             OpenCV's threads (network, resizing); 0 = all cores (default)\n"
          "  --quiet                 no progress line\n"
          "The post-processing (decoding, NMS) runs on --device:\n"
       << backend_options_help();
@@ -72,6 +75,7 @@ struct DetectOptions {
   int threads = 0;
   bool quiet = false;
   BackendOptions backend;
+  int tile = 0;  // --tile: 0 = the whole image
 };
 
 // A threshold in [0, 1]; NaN is refused too.
@@ -104,6 +108,7 @@ DetectOptions take_detect_options(std::vector<std::string>& args) {
   d.max_detections = whole_option(args, "--max-detections", d.max_detections, 1, 100000);
   const std::string target = take_option(args, "--dnn-target");
   if (!target.empty()) d.dnn_target = parse_dnn_target(target);
+  options.tile = take_tile_option(args);
   options.threads = whole_option(args, "--threads", 0, 0, 1024);
   options.quiet = take_flag(args, "--quiet");
   options.backend = take_backend_options(args);
@@ -157,6 +162,21 @@ void print_timing(const StageTimes& times, size_t images, double wall_seconds) {
                median_ms(times.postprocess), wall_seconds > 0.0 ? images / wall_seconds : 0.0);
 }
 
+// The detections of one image, whole or in tiles; a tiled image's stage times add up over
+// its tiles.
+std::vector<ObjectDetection> detect_timed(SsdDetector& detector, const cv::Mat& bgr, const TilingPlan& tiling,
+                                          float iou, DetectionTimes& spent) {
+  const auto detect = [&](const cv::Mat& part) {
+    DetectionTimes tile_spent;
+    std::vector<ObjectDetection> found = detector.detect(part, &tile_spent);
+    spent.preprocess += tile_spent.preprocess;
+    spent.forward += tile_spent.forward;
+    spent.postprocess += tile_spent.postprocess;
+    return found;
+  };
+  return detect_in_tiles(detect, bgr, tiling, iou);
+}
+
 }  // namespace
 
 int run_detect_command(std::vector<std::string> args) {
@@ -167,12 +187,19 @@ int run_detect_command(std::vector<std::string> args) {
   // Everything that can be checked is, before any image is processed or output written.
   const std::vector<std::string> files = list_input_images(args);
   check_outputs(options, files);
+  if (options.tile > 0) {
+    for (const std::string& file : files) check_tile_fits(options.tile, load_rgb8(file).size(), file);
+  }
   const std::string model = resolve_detector_model_path(options.model);
   if (options.threads > 0) cv::setNumThreads(options.threads);
   ComputeBackend backend(options.backend);
   SsdDetector detector(model, backend, options.detector);
   std::cerr << "detect: " << files.size() << " image" << (files.size() == 1 ? "" : "s") << " with "
             << model << "; " << detector.planned() << "\n";
+  const TilingPlan tiling = fixed_tiling(options.tile);
+  if (tiling.tile > 0) {
+    std::cerr << "detect: tiles of " << tiling.tile << " px, stride " << tiling.stride << " px\n";
+  }
 
   std::vector<ImageDetections> results;
   std::vector<cv::Mat> sheet_images;  // RGB, the first kSheetImages, for --png
@@ -193,7 +220,7 @@ int run_detect_command(std::vector<std::string> args) {
     image.image_id = static_cast<int>(i) + 1;
     image.width = rgb.cols;
     image.height = rgb.rows;
-    image.found = detector.detect(bgr, &spent);
+    image.found = detect_timed(detector, bgr, tiling, options.detector.iou_threshold, spent);
     times.preprocess.push_back(spent.preprocess);
     times.forward.push_back(spent.forward);
     times.postprocess.push_back(spent.postprocess);

@@ -1,6 +1,7 @@
 // flexsight eval-det: scores detections against the ground truth of a BOP or COCO data
 // set (VOC and COCO average precision) and writes a Markdown and a JSON report, the
 // precision-recall curves and a montage of the first images.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,10 +12,12 @@
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
+#include "host/cli/tile_option.h"
 #include "host/dataset/dataset_files.h"
 #include "host/detect/detector_model.h"
 #include "host/detect/ssd_detector.h"
 #include "host/eval/detection_ground_truth.h"
+#include "host/eval/detection_breakdown.h"
 #include "host/eval/detection_metrics.h"
 #include "host/eval/detection_pictures.h"
 #include "host/eval/detection_report.h"
@@ -51,6 +54,9 @@ struct EvalDetOptions {
   bool overwrite = false;
   double iou_threshold = 0.5;
   int montage = kDefaultMontageImages;
+  int tile = 0;
+  double recall_score = 0.3;
+  double min_visible = 0;
 };
 
 void print_help() {
@@ -66,6 +72,8 @@ void print_help() {
          "                        curves reach the model's full recall)\n"
          "  --top-k K             with --model: candidates per class into NMS (default 100)\n"
          "  --threads N           with --model: OpenCV's threads (0 = all cores, default)\n"
+      << tile_option_help(24)
+      << "                        (with --model)\n"
          "  --quiet               no progress line\n"
          "  --results DETS.json   or score these detections: a JSON list of COCO results\n"
          "                        {image_id, category_id, bbox [x, y, w, h], score} with the\n"
@@ -78,6 +86,10 @@ void print_help() {
          "  --iou-threshold T     IoU of a match for the VOC AP and the curves (default 0.5;\n"
          "                        map50 is at 0.5 and the COCO APs at 0.50:0.05:0.95 whatever T)\n"
          "  --montage N           the first N images in montage.jpg (default 16, 0 = none)\n"
+         "  --recall-score S      the score of the recall by part size (default 0.3, detect's\n"
+         "                        --score); recall at any score is reported too\n"
+         "  --min-visible F       BOP folders: parts less visible than F (visib_fract, 0..1)\n"
+         "                        are crowd regions, neither found nor missed (default 0)\n"
          "With --model the post-processing (decoding, NMS) runs on --device:\n"
       << backend_options_help();
 }
@@ -128,6 +140,15 @@ EvalDetOptions parse_options(std::vector<std::string> args) {
   if (!threads.empty()) {
     options.threads = static_cast<int>(parse_whole_number("--threads", threads, 0, 1024));
   }
+  options.tile = take_tile_option(args);
+  options.recall_score = take_number_option(args, "--recall-score", options.recall_score);
+  if (!(options.recall_score >= 0.0 && options.recall_score <= 1.0)) {
+    throw InputError("option --recall-score", "must lie in [0, 1], got " + std::to_string(options.recall_score));
+  }
+  options.min_visible = take_number_option(args, "--min-visible", options.min_visible);
+  if (!(options.min_visible >= 0.0 && options.min_visible <= 1.0)) {
+    throw InputError("option --min-visible", "must lie in [0, 1], got " + std::to_string(options.min_visible));
+  }
   options.quiet = take_flag(args, "--quiet");
   options.backend = take_backend_options(args);
   reject_unknown_options(args);
@@ -141,6 +162,9 @@ EvalDetOptions parse_options(std::vector<std::string> args) {
     throw InputError("option --model", "give either --model or --results, not both");
   }
   if (options.out.empty()) throw InputError("option --out", "an output folder is required");
+  if (options.tile > 0 && !options.results.empty()) {
+    throw InputError("option --tile", "runs the detector in tiles; it has no meaning with --results");
+  }
   return options;
 }
 
@@ -153,7 +177,29 @@ DetectionResults collect_detections(const EvalDetOptions& options, const Detecti
   run.backend = options.backend;
   run.threads = options.threads;
   run.quiet = options.quiet;
+  run.tile = options.tile;
   return run_detector(resolve_detector_model_path(options.model), truth, run);
+}
+
+// The class-agnostic and by-size figures as a text table (report.md has them too).
+std::string size_table(const DetectionBreakdown& b) {
+  const std::string score = threshold_label(b.recall_score);
+  std::string text = "class-agnostic AP@0.5 " + fraction_text(b.agnostic.ap50) + ", AP@[.5:.95] " +
+                     fraction_text(b.agnostic_coco_ap) + "; by part size (sqrt of the box's area), recall at IoU 0.5:\n";
+  char line[200];
+  std::snprintf(line, sizeof line, "%-8s %6s %8s %9s %9s %10s %9s %9s\n", "size px", "truth", "mAP@0.5",
+                ("rec>=" + score).c_str(), "rec any", "agn AP@.5", ("agn>=" + score).c_str(), "agn any");
+  text += line;
+  const auto row = [&](const std::string& label, const MatchFigures& c, const MatchFigures& a) {
+    std::snprintf(line, sizeof line, "%-8s %6d %8s %9s %9s %10s %9s %9s\n", label.c_str(), c.ground_truth,
+                  fraction_text(c.ap50).c_str(), fraction_text(c.recall_at_score).c_str(),
+                  fraction_text(c.recall_any).c_str(), fraction_text(a.ap50).c_str(),
+                  fraction_text(a.recall_at_score).c_str(), fraction_text(a.recall_any).c_str());
+    text += line;
+  };
+  row("all", b.per_class, b.agnostic);
+  for (const SizeFigures& size : b.sizes) row(size.bin.label, size.per_class, size.agnostic);
+  return text;
 }
 
 }  // namespace
@@ -163,7 +209,7 @@ int run_eval_det_command(std::vector<std::string> args) {
   const EvalDetOptions options = parse_options(std::move(args));
 
   // Every input is read and checked before anything is written.
-  const DetectionGroundTruth truth(options.dataset);
+  const DetectionGroundTruth truth(options.dataset, options.min_visible);
   std::vector<std::vector<TruthBox>> truth_boxes;
   bool any_truth = false;
   for (const DetectionImage& image : truth.images()) {
@@ -175,6 +221,11 @@ int run_eval_det_command(std::vector<std::string> args) {
   }
   // The detector reads every image; a results file needs only the montage's first ones.
   truth.check_images(options.results.empty() ? truth.images().size() : static_cast<std::size_t>(options.montage));
+  if (options.tile > 0) {
+    for (std::size_t i = 0; i < truth.images().size(); ++i) {
+      check_tile_fits(options.tile, truth.load_rgb(i).size(), "image " + std::to_string(i + 1) + " of " + truth.source());
+    }
+  }
   // The output folder is checked (and its staging folder made) before the detector runs.
   StagedFolder staged(options.out, options.overwrite, "--out");
   const DetectionResults detections = collect_detections(options, truth);
@@ -185,7 +236,14 @@ int run_eval_det_command(std::vector<std::string> args) {
   report.dataset_format = truth.format() == DetectionGroundTruth::Format::coco ? "COCO" : "BOP";
   report.detections = detections.source;
   report.detections_format = detections.format;
-  report.scores = evaluate_detections(truth_boxes, detections.per_image, truth.categories(), eval_options);
+  std::vector<DetectionCategory> categories = truth.categories();
+  categories.insert(categories.end(), detections.extra_categories.begin(), detections.extra_categories.end());
+  std::sort(categories.begin(), categories.end(),
+            [](const DetectionCategory& a, const DetectionCategory& b) { return a.id < b.id; });
+  report.scores = evaluate_detections(truth_boxes, detections.per_image, categories, eval_options);
+  DetectionBreakdownOptions breakdown_options;
+  breakdown_options.recall_score = options.recall_score;
+  report.breakdown = evaluate_breakdown(truth_boxes, detections.per_image, categories, breakdown_options);
   const cv::Mat curves = draw_pr_curves(report.scores);
   const cv::Mat montage = draw_detection_montage(montage_images(truth, detections, options.montage));
 
@@ -203,6 +261,7 @@ int run_eval_det_command(std::vector<std::string> args) {
             << " (VOC), mAP@[.5:.95] " << fraction_text(s.map50_95) << ", AP50 "
             << fraction_text(s.ap50_coco) << ", AP75 " << fraction_text(s.ap75) << " -> "
             << staged.target() << "\n";
+  std::cout << size_table(report.breakdown);
   return 0;
 }
 

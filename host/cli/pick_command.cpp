@@ -13,6 +13,7 @@
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/pick_options.h"
+#include "host/cli/tile_option.h"
 #include "host/detect/detector_model.h"
 #include "host/io/atomic_file.h"
 #include "host/io/calibration.h"
@@ -120,6 +121,7 @@ int run_pick_command(std::vector<std::string> args) {
                                                 std::to_string(pair.left.rows) + ": not the left view without the pattern");
     }
   }
+  if (settings.detection_tile > 0) check_tile_fits(settings.detection_tile, pair.left.size(), inputs.left);
   settings.stereo.ndisp = pick_ndisp(options, inputs.calib);
   validate_inputs(pair.left, pair.right, settings.stereo);
   PickSession session(settings);

@@ -49,6 +49,13 @@ TilingPlan tiling_for_part_sizes(cv::Size image, double typical_part, double lar
   return plan;
 }
 
+TilingPlan fixed_tiling(int tile) {
+  if (tile <= 0) return {};
+  return {tile, std::max(1, tile * 3 / 4)};
+}
+
+bool tile_fits(cv::Size image, int tile) { return tile <= image.width && tile <= image.height; }
+
 std::vector<cv::Rect> detection_tiles(cv::Size image, const TilingPlan& plan) {
   std::vector<cv::Rect> tiles;
   if (plan.tile <= 0) return tiles;

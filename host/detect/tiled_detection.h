@@ -36,6 +36,15 @@ struct TilingPlan {
 // image's shorter side: tiles would add nothing.
 TilingPlan tiling_for_part_sizes(cv::Size image, double typical_part, double largest_part, int min_tile = 300);
 
+// Square tiles of `tile` pixels, neighbours overlapping by a quarter tile (stride 3/4
+// tile): the plan for a tile size given by hand (pick's, detect's and eval-det's --tile N).
+// The whole image only for tile 0.
+TilingPlan fixed_tiling(int tile);
+
+// Whether tiles of `tile` pixels fit in `image` (neither side shorter than a tile): a
+// larger tile would only be the image clipped, which the whole-image detection is.
+bool tile_fits(cv::Size image, int tile);
+
 // The tiles of `plan` over `image`, row by row, spread evenly with neighbours at most
 // plan.stride apart; the last row and column end at the image's edge. Empty when
 // plan.tile is 0.

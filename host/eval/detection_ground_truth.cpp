@@ -15,15 +15,20 @@
 
 namespace flexsight {
 
-DetectionGroundTruth::DetectionGroundTruth(const std::string& path) {
+DetectionGroundTruth::DetectionGroundTruth(const std::string& path, double min_visible_fraction) {
   namespace fs = std::filesystem;
   const std::string coco_in_folder = (fs::path(path) / bop_layout::kCocoFile).string();
+  const bool coco = dataset_files::is_file(path) || dataset_files::is_file(coco_in_folder);
+  if (coco && min_visible_fraction > 0) {
+    throw InputError(path, "is a COCO data set, which has no visible fraction of a part "
+                           "(--min-visible needs a BOP folder)");
+  }
   if (dataset_files::is_file(path)) {
     read_coco_file(path);
   } else if (dataset_files::is_file(coco_in_folder)) {
     read_coco_file(coco_in_folder);
   } else if (dataset_files::is_directory(path)) {
-    read_bop_folder(path);
+    read_bop_folder(path, min_visible_fraction);
   } else {
     throw InputError(path, "does not exist (expected a COCO instances file, a folder with " +
                                std::string(bop_layout::kCocoFile) + ", or a BOP folder)");
@@ -80,7 +85,7 @@ void DetectionGroundTruth::read_coco_file(const std::string& path) {
   }
 }
 
-void DetectionGroundTruth::read_bop_folder(const std::string& path) {
+void DetectionGroundTruth::read_bop_folder(const std::string& path, double min_visible_fraction) {
   format_ = Format::bop;
   source_ = path;
   bop_ = std::make_unique<BopReader>(path);
@@ -103,6 +108,7 @@ void DetectionGroundTruth::read_bop_folder(const std::string& path) {
                   static_cast<double>(part.bbox_visib.width),
                   static_cast<double>(part.bbox_visib.height)};
       box.area = box.bbox[2] * box.bbox[3];
+      box.crowd = part.visib_fract < min_visible_fraction;
       image.truth.push_back(box);
     }
     images_.push_back(std::move(image));

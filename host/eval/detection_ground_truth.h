@@ -32,8 +32,11 @@ class DetectionGroundTruth {
   //  * a BOP scene or split folder: boxes are scene_gt_info.json's bbox_visib, without
   //    the parts that have visib_fract 0 or an empty bbox_visib; area = width x height.
   // Throws InputError naming the path for what the readers refuse, and for a BOP scene
-  // without scene_gt_info.json.
-  explicit DetectionGroundTruth(const std::string& path);
+  // without scene_gt_info.json. In a BOP folder, parts with a visib_fract below
+  // `min_visible_fraction` become crowd regions (neither found nor missed, as eval-pick
+  // treats parts less than 10 % visible); a COCO file has no visible fraction, so there
+  // it must be 0.
+  explicit DetectionGroundTruth(const std::string& path, double min_visible_fraction = 0);
   ~DetectionGroundTruth();
   DetectionGroundTruth(DetectionGroundTruth&&) noexcept;
 
@@ -57,7 +60,7 @@ class DetectionGroundTruth {
 
  private:
   void read_coco_file(const std::string& path);
-  void read_bop_folder(const std::string& path);
+  void read_bop_folder(const std::string& path, double min_visible_fraction);
 
   Format format_ = Format::coco;
   std::string source_;

@@ -2,98 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <map>
 #include <stdexcept>
 
 #include "host/eval/coco_box_eval.h"
+#include "host/eval/voc_matching.h"
 
 namespace flexsight {
 namespace {
 
 constexpr int kCurvePoints = 101;
-
-// One class's boxes, per image.
-struct ClassBoxes {
-  std::vector<std::vector<const TruthBox*>> truth;
-  std::vector<std::vector<const DetectedBox*>> detections;
-};
-
-struct VocResult {
-  double ap = 0;
-  PrCurve curve;
-};
-
-// PASCAL VOC 2010+ AP of one class at `threshold`: every detection of the class, best
-// score first (ties: image order, then list order), takes the unmatched non-crowd box of
-// its image with the highest IoU (the first on ties) when that IoU reaches the threshold
-// (a true positive); else it is ignored when it covers a crowd region that much (COCO's
-// crowd IoU, as VOC ignores "difficult" objects), and a false positive otherwise. AP is
-// the area under the precision envelope (precision made monotone from the right) over
-// every recall step.
-VocResult voc_class(const ClassBoxes& boxes, double threshold) {
-  struct Record {
-    double score;
-    std::size_t image;
-    const DetectedBox* box;
-  };
-  std::vector<Record> records;
-  std::vector<std::vector<std::uint8_t>> used(boxes.truth.size());
-  int positives = 0;
-  for (std::size_t i = 0; i < boxes.truth.size(); ++i) {
-    used[i].assign(boxes.truth[i].size(), 0);
-    for (const TruthBox* truth : boxes.truth[i]) positives += truth->crowd ? 0 : 1;
-    for (const DetectedBox* box : boxes.detections[i]) records.push_back({box->score, i, box});
-  }
-  std::stable_sort(records.begin(), records.end(),
-                   [](const Record& a, const Record& b) { return a.score > b.score; });
-  VocResult result;
-  if (positives == 0) {
-    result.ap = std::nan("");
-    return result;
-  }
-  double tp = 0, fp = 0;
-  for (const Record& record : records) {
-    const std::vector<const TruthBox*>& truth = boxes.truth[record.image];
-    int best = -1;
-    double best_iou = -1;
-    bool on_crowd = false;
-    for (std::size_t g = 0; g < truth.size(); ++g) {
-      if (truth[g]->crowd) {
-        on_crowd = on_crowd || box_iou(record.box->bbox, truth[g]->bbox, true) >= threshold;
-        continue;
-      }
-      if (used[record.image][g]) continue;
-      const double iou = box_iou(record.box->bbox, truth[g]->bbox);
-      if (iou > best_iou) {
-        best_iou = iou;
-        best = static_cast<int>(g);
-      }
-    }
-    if (best >= 0 && best_iou >= threshold) {
-      used[record.image][best] = 1;
-      tp += 1;
-    } else if (on_crowd) {
-      continue;
-    } else {
-      fp += 1;
-    }
-    result.curve.recall.push_back(tp / positives);
-    result.curve.precision.push_back(tp / (tp + fp));
-  }
-  // Envelope, then the area under it: recall steps from 0 to the last point's recall
-  // (beyond it the envelope is 0).
-  std::vector<double>& precision = result.curve.precision;
-  for (std::size_t k = precision.size(); k-- > 1;) {
-    precision[k - 1] = std::max(precision[k - 1], precision[k]);
-  }
-  double previous_recall = 0;
-  for (std::size_t k = 0; k < precision.size(); ++k) {
-    result.ap += (result.curve.recall[k] - previous_recall) * precision[k];
-    previous_recall = result.curve.recall[k];
-  }
-  return result;
-}
 
 double mean_of_defined(const std::vector<ClassDetectionScores>& classes,
                        double ClassDetectionScores::*value) {
@@ -142,49 +59,6 @@ double box_iou(const BoxXywh& detection, const BoxXywh& truth, bool truth_is_cro
   return intersection / united;
 }
 
-namespace {
-
-// Every box sorted into its class, keeping image order and order within the image; the
-// classes' box counts are added to `scores`.
-std::vector<ClassBoxes> boxes_by_class(const std::vector<std::vector<TruthBox>>& truth,
-                                       const std::vector<std::vector<DetectedBox>>& detections,
-                                       const std::vector<DetectionCategory>& categories,
-                                       DetectionScores& scores) {
-  std::map<int, std::size_t> class_of_id;
-  std::vector<ClassBoxes> boxes(categories.size());
-  for (std::size_t c = 0; c < categories.size(); ++c) {
-    if (!class_of_id.emplace(categories[c].id, c).second) {
-      throw std::invalid_argument("evaluate_detections: category " +
-                                  std::to_string(categories[c].id) + " is listed twice");
-    }
-    boxes[c].truth.resize(truth.size());
-    boxes[c].detections.resize(truth.size());
-  }
-  const auto class_index = [&](int category_id) {
-    const auto found = class_of_id.find(category_id);
-    if (found == class_of_id.end()) {
-      throw std::invalid_argument("evaluate_detections: a box of category " +
-                                  std::to_string(category_id) + ", which is not listed");
-    }
-    return found->second;
-  };
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    for (const TruthBox& box : truth[i]) {
-      const std::size_t c = class_index(box.category_id);
-      boxes[c].truth[i].push_back(&box);
-      (box.crowd ? scores.classes[c].crowd : scores.classes[c].ground_truth) += 1;
-    }
-    for (const DetectedBox& box : detections[i]) {
-      const std::size_t c = class_index(box.category_id);
-      boxes[c].detections[i].push_back(&box);
-      scores.classes[c].detections += 1;
-    }
-  }
-  return boxes;
-}
-
-}  // namespace
-
 DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& truth,
                                     const std::vector<std::vector<DetectedBox>>& detections,
                                     const std::vector<DetectionCategory>& categories,
@@ -199,14 +73,18 @@ DetectionScores evaluate_detections(const std::vector<std::vector<TruthBox>>& tr
   scores.iou_threshold = options.iou_threshold;
   scores.images = static_cast<int>(truth.size());
   scores.classes.resize(categories.size());
-  const std::vector<ClassBoxes> boxes = boxes_by_class(truth, detections, categories, scores);
+  const std::vector<ClassBoxes> boxes = boxes_by_class(truth, detections, categories);
 
   for (std::size_t c = 0; c < categories.size(); ++c) {
     ClassDetectionScores& result = scores.classes[c];
     result.category_id = categories[c].id;
     result.name = categories[c].name;
-    result.voc_ap50 = voc_class(boxes[c], 0.5).ap;
-    VocResult voc = voc_class(boxes[c], options.iou_threshold);
+    for (const auto& image : boxes[c].truth) {
+      for (const TruthBox* box : image) (box->crowd ? result.crowd : result.ground_truth) += 1;
+    }
+    for (const auto& image : boxes[c].detections) result.detections += static_cast<int>(image.size());
+    result.voc_ap50 = voc_match(boxes[c], 0.5).ap;
+    VocMatching voc = voc_match(boxes[c], options.iou_threshold);
     result.voc_ap = voc.ap;
     result.curve = std::move(voc.curve);
     const coco_eval::ClassAp coco =

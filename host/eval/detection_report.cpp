@@ -24,6 +24,59 @@ int crowd_regions(const DetectionScores& scores) {
   return count;
 }
 
+std::string figures_cells(const MatchFigures& f) {
+  return " " + fraction_text(f.ap50) + " | " + fraction_text(f.recall_at_score) + " | " +
+         fraction_text(f.recall_any) + " |";
+}
+
+std::string size_row(const std::string& label, const MatchFigures& per_class, const MatchFigures& agnostic) {
+  return "| " + label + " | " + std::to_string(per_class.ground_truth) + " |" + figures_cells(per_class) +
+         figures_cells(agnostic) + "\n";
+}
+
+std::string breakdown_markdown(const DetectionBreakdown& b) {
+  const std::string score = threshold_label(b.recall_score);
+  std::string text = "\n## Class-agnostic and by part size\n\n";
+  text += "Class-agnostic: every box one class (is the part found, whatever it is called); "
+          "class-agnostic AP@[.5:.95] (COCO) " + fraction_text(b.agnostic_coco_ap) + ". Size: "
+          "sqrt(width x height) of the ground-truth box in pixels. Recall: the share of the "
+          "ground truth matched at IoU 0.5 (VOC matching) by a detection scoring >= " + score +
+          ", and by any detection.\n\n";
+  text += "| size (px) | ground truth | mAP@0.5 | recall (score >= " + score +
+          ") | recall (any score) | class-agnostic AP@0.5 | recall (score >= " + score +
+          ") | recall (any score) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  text += size_row("all", b.per_class, b.agnostic);
+  for (const SizeFigures& size : b.sizes) text += size_row(size.bin.label, size.per_class, size.agnostic);
+  return text;
+}
+
+nlohmann::ordered_json figures_json(const MatchFigures& f) {
+  return {{"ground_truth", f.ground_truth},
+          {"ap50", number_or_null(f.ap50)},
+          {"recall_at_score", number_or_null(f.recall_at_score)},
+          {"recall_any", number_or_null(f.recall_any)}};
+}
+
+nlohmann::ordered_json breakdown_json(const DetectionBreakdown& b) {
+  nlohmann::ordered_json agnostic = figures_json(b.agnostic);
+  agnostic["coco_ap"] = number_or_null(b.agnostic_coco_ap);
+  agnostic["recall_score"] = b.recall_score;
+  agnostic["per_class"] = figures_json(b.per_class);
+  return agnostic;
+}
+
+nlohmann::ordered_json by_size_json(const DetectionBreakdown& b) {
+  nlohmann::ordered_json sizes = nlohmann::ordered_json::array();
+  for (const SizeFigures& size : b.sizes) {
+    const SizeRange& r = size.bin.range;
+    sizes.push_back({{"label", size.bin.label},
+                     {"size_px", {r.min_px, std::isfinite(r.max_px) ? nlohmann::ordered_json(r.max_px) : nullptr}},
+                     {"per_class", figures_json(size.per_class)},
+                     {"class_agnostic", figures_json(size.agnostic)}});
+  }
+  return sizes;
+}
+
 }  // namespace
 
 std::string to_markdown(const DetectionReport& report) {
@@ -62,6 +115,7 @@ std::string to_markdown(const DetectionReport& report) {
     text += " " + fraction_text(c.coco_ap) + " | " + fraction_text(c.coco_ap50) + " | " + fraction_text(c.coco_ap75) + " |\n";
   }
   text += "\nA class without ground truth shows `-`: it enters no mean.\n";
+  text += breakdown_markdown(report.breakdown);
   return text;
 }
 
@@ -102,6 +156,8 @@ std::string to_json(const DetectionReport& report) {
     recall.push_back(r + 1 == s.mean_precision_101.size() ? 1.0 : r * (1.0 / 100.0));
   }
   json["mean_pr_curve"] = {{"recall", recall}, {"precision", s.mean_precision_101}};
+  json["class_agnostic"] = breakdown_json(report.breakdown);
+  json["by_size"] = by_size_json(report.breakdown);
   return json.dump(2) + "\n";
 }
 

@@ -3,6 +3,7 @@
 // like the stereo evaluator's, and report.json, the same numbers for scripts.
 #include <string>
 
+#include "host/eval/detection_breakdown.h"
 #include "host/eval/detection_metrics.h"
 
 namespace flexsight {
@@ -13,6 +14,7 @@ struct DetectionReport {
   std::string detections;         // where the detections came from (the results file)
   std::string detections_format;  // "COCO results", "BOP results", "empty"
   DetectionScores scores;
+  DetectionBreakdown breakdown;  // class-agnostic and by size
 };
 
 // One sentence per metric: what is matched, how AP is integrated, what is averaged.
@@ -24,7 +26,10 @@ std::string to_markdown(const DetectionReport& report);
 // iou_threshold, map50, map50_95, ap50_coco, ap75, map_at_iou_threshold, conventions,
 // classes (category_id, name, ground_truth, crowd, detections, voc_ap50,
 // voc_ap_at_iou_threshold, coco_ap, coco_ap50, coco_ap75) and mean_pr_curve (recall,
-// precision: 101 points). APs are fractions in [0, 1]; null where undefined.
+// precision: 101 points), class_agnostic (ap50, coco_ap, recall_score, ground_truth,
+// recall_at_score, recall_any; per_class: the same with the right class needed) and
+// by_size (size_px [min, max or null], label, per_class and class_agnostic: ground_truth,
+// ap50, recall_at_score, recall_any). APs are fractions in [0, 1]; null where undefined.
 std::string to_json(const DetectionReport& report);
 
 }  // namespace flexsight

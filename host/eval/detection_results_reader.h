@@ -19,6 +19,9 @@ struct DetectionResults {
   std::string format;  // "COCO results", "BOP results", or "empty" for []
   // Per image of the ground truth, in its order; each image's boxes in file order.
   std::vector<std::vector<DetectedBox>> per_image;
+  // Classes the detector knows that a BOP folder does not name (it names only the objects
+  // its scenes show): scored beside the folder's as classes without ground truth.
+  std::vector<DetectionCategory> extra_categories;
 };
 
 // Reads and checks `path` against `truth`. Throws InputError naming the file and the

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "host/detect/tiled_detection.h"
 #include "host/io/input_error.h"
 #include "host/io/progress_bar.h"
 #include "host/runtime/compute_backend.h"
@@ -38,18 +39,30 @@ DetectionResults run_detector(const std::string& model_path, const DetectionGrou
   if (options.threads > 0) cv::setNumThreads(options.threads);
   ComputeBackend backend(options.backend);
   SsdDetector detector(model_path, backend, options.detector);
+  DetectionResults results;
+  bool shares_a_category = false;
   for (const DetectorLabel& label : detector.labels()) {
-    if (!is_truth_category(truth, label.category_id)) {
+    if (is_truth_category(truth, label.category_id)) {
+      shares_a_category = true;
+    } else if (truth.format() == DetectionGroundTruth::Format::bop) {
+      results.extra_categories.push_back({label.category_id, label.name});
+    } else {
       throw InputError(model_path, "detects category " + std::to_string(label.category_id) + " (" +
                                        label.name + "), which " + truth.source() +
                                        " does not have: a model for other parts");
     }
   }
+  if (!shares_a_category) {
+    throw InputError(model_path, "detects none of the objects of " + truth.source() + ": a model for other parts");
+  }
+  const TilingPlan tiling = fixed_tiling(options.tile);
   std::cerr << "eval-det: " << truth.images().size() << " images with " << model_path << "; "
             << detector.planned() << "\n";
-  DetectionResults results;
   results.source = model_path;
   results.format = "model run by eval-det";
+  if (tiling.tile > 0) {
+    results.format += ", tiles of " + std::to_string(tiling.tile) + " px (stride " + std::to_string(tiling.stride) + ")";
+  }
   std::optional<ProgressBar> progress;
   if (!options.quiet) progress.emplace(static_cast<std::int64_t>(truth.images().size()), "images");
   const auto start = std::chrono::steady_clock::now();
@@ -57,7 +70,8 @@ DetectionResults run_detector(const std::string& model_path, const DetectionGrou
     cv::Mat bgr;
     cv::cvtColor(truth.load_rgb(i), bgr, cv::COLOR_RGB2BGR);
     std::vector<DetectedBox> boxes;
-    for (const ObjectDetection& found : detector.detect(bgr)) {
+    const auto detect = [&](const cv::Mat& part) { return detector.detect(part); };
+    for (const ObjectDetection& found : detect_in_tiles(detect, bgr, tiling, options.detector.iou_threshold)) {
       DetectedBox box;
       box.category_id = found.category_id;
       box.bbox = {found.box[0], found.box[1], found.box[2] - found.box[0], found.box[3] - found.box[1]};

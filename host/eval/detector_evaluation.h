@@ -17,11 +17,16 @@ struct DetectorRunOptions {
   BackendOptions backend;
   int threads = 0;     // OpenCV's threads (0: its default)
   bool quiet = false;  // no progress line
+  // Square tiles of this many pixels (host/detect/tiled_detection.h, fixed_tiling), the
+  // boxes merged by per-class NMS at detector.iou_threshold; 0: the whole image.
+  int tile = 0;
 };
 
 // The detector of `model_path` on every image of `truth`. A model that knows a category
-// the data set lacks was trained for other parts: refused (InputError naming the model)
-// before any image runs.
+// a COCO data set lacks, or none of a BOP folder's, was trained for other parts: refused
+// (InputError naming the model) before any image runs. A BOP folder names only the
+// objects its scenes show (a bin holds a few of the 23 parts): the model's other classes
+// come back in extra_categories.
 DetectionResults run_detector(const std::string& model_path, const DetectionGroundTruth& truth,
                               const DetectorRunOptions& options);
 

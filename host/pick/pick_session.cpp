@@ -139,10 +139,7 @@ cv::Mat PickSession::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rg
 TilingPlan PickSession::detection_tiling(cv::Size image, const PinholeCamera& camera, const cv::Mat& depth_mm) const {
   const PickSettings& settings = impl_->settings;
   if (settings.detection_tile == 0) return {};
-  if (settings.detection_tile > 0) {
-    const int tile = settings.detection_tile;
-    return {tile, std::max(1, tile * 3 / 4)};
-  }
+  if (settings.detection_tile > 0) return fixed_tiling(settings.detection_tile);
   // A part's size in pixels: f x diameter / depth, at the median measured depth (the
   // bin's floor and the parts on it).
   std::vector<float> depths;

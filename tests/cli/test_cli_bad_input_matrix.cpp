@@ -244,6 +244,22 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"detect " + d + "nope.png -o " + d + "existing.json", d + "nope.png"},
       {"detect " + d + "left.png --model " + d + "junk.onnx -o " + d + "existing.json", d + "junk.onnx"},
       {"eval-det " + d + "nowhere --results " + d + "existing.json --out " + d + "det_out", d + "nowhere"},
+      // --tile: a tile larger than the image (left.png is 64 x 48), auto (needs depth),
+      // below the range, or with detections read from a file
+      {"detect " + d + "left.png --tile 64 -o " + d + "existing.json", "--tile", d + "left.png (64x48)"},
+      {"detect " + d + "left.png --tile auto -o " + d + "existing.json", "--tile", "pick"},
+      {"detect " + d + "left.png --tile 12 -o " + d + "existing.json", "--tile"},
+      {"eval-det " + std::string(FLEXSIGHT_TEST_DATA_DIR) + "/detect/tless_synth_8 --tile 301 --out " + d + "det_out",
+       "--tile", "300x300"},
+      {"eval-det " + std::string(FLEXSIGHT_TEST_DATA_DIR) + "/detect/tless_synth_8 --results " + d +
+           "existing.json --tile 128 --out " + d + "det_out",
+       "--tile", "--results"},
+      {"eval-det " + std::string(FLEXSIGHT_TEST_DATA_DIR) + "/detect/tless_synth_8 --results " + d +
+           "existing.json --min-visible 0.5 --out " + d + "det_out",
+       "--min-visible"},
+      {"eval-det " + std::string(FLEXSIGHT_TEST_DATA_DIR) + "/detect/tless_synth_8 --results " + d +
+           "existing.json --recall-score 2 --out " + d + "det_out",
+       "--recall-score"},
       // pose
       {"pose-templates " + d + "nowhere -o " + d + "existing.tpl", d + "nowhere"},
       {"pose " + d + "left.png --depth " + d + "disp.pfm --calib " + d + "calib.txt --boxes " + d +
@@ -273,6 +289,9 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 12 -o " +
            d + "existing.json",
        "--tile"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 64 -o " +
+           d + "existing.json",
+       "--tile", d + "left.png (64x48)"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --stereo-downscale 0 -o " + d + "existing.json",
        "--stereo-downscale"},

@@ -96,6 +96,35 @@ TEST_F(DetectCli, WritesCocoResults) {
   EXPECT_NEAR(first["bbox"][3].get<double>(), y1 - y0, 1e-3);
 }
 
+// One tile the image's size is the whole image: the same bytes as without --tile. Smaller
+// tiles overlap by a quarter tile and put every box inside the image.
+TEST_F(DetectCli, TilesOfTheImagesSizeAreTheWholeImage) {
+  const cv::Mat image = cv::imread(tiny_ssd_image());
+  const std::string square = (dir_ / "square.png").string();
+  cv::imwrite(square, image(cv::Rect(0, 0, image.rows, image.rows)));  // 241 x 241
+  const std::string whole_json = (dir_ / "whole.json").string();
+  RunResult whole = run_flexsight(detect(square + " --score 0.05 -o " + whole_json), dir_);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("tiles of"), std::string::npos) << whole.err;
+  RunResult one_tile = run_flexsight(detect(square + " --score 0.05 --tile 241 -o " + json_), dir_);
+  ASSERT_EQ(one_tile.exit_code, 0) << one_tile.err;
+  EXPECT_NE(one_tile.err.find("tiles of 241 px, stride 180 px"), std::string::npos) << one_tile.err;
+  EXPECT_FALSE(read_text(whole_json).empty());
+  EXPECT_EQ(read_text(json_), read_text(whole_json));
+
+  RunResult tiled = run_flexsight(detect(tiny_ssd_image() + " --score 0.05 --tile 100 -o " + json_), dir_);
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  const nlohmann::json results = nlohmann::json::parse(read_text(json_));
+  ASSERT_FALSE(results.empty());
+  EXPECT_NE(results.dump(), nlohmann::json::parse(read_text(whole_json)).dump());
+  for (const nlohmann::json& d : results) {
+    EXPECT_GE(d["bbox"][0].get<double>(), 0.0);
+    EXPECT_GE(d["bbox"][1].get<double>(), 0.0);
+    EXPECT_LE(d["bbox"][0].get<double>() + d["bbox"][2].get<double>(), 317.0 + 1e-3);
+    EXPECT_LE(d["bbox"][1].get<double>() + d["bbox"][3].get<double>(), 241.0 + 1e-3);
+  }
+}
+
 TEST_F(DetectCli, PrintsATableWithoutOutputFile) {
   RunResult r = run_flexsight(detect(tiny_ssd_image()), dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;

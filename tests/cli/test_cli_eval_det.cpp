@@ -141,8 +141,31 @@ TEST_F(EvalDetCli, WritesReportsAndPictures) {
   EXPECT_NEAR(one["coco_ap"].get<double>(), 2.0 / 3.0, 1e-12);
   EXPECT_EQ(report["classes"][1]["voc_ap50"], 1.0);
 
+  // Class-agnostic: 0.95 (a false positive), then three hits: points (1/3, 0),
+  // (1/3, 1/2), (2/3, 2/3), (1, 3/4), envelope 3/4 everywhere -> AP 0.75, and the same
+  // at every COCO threshold (exact boxes). Every part is below 32 px (sqrt of its area:
+  // 17.9, 20, 24.5); so is the false positive (10 px), so the <32 bin keeps it.
+  const Json& agnostic = report["class_agnostic"];
+  EXPECT_NEAR(agnostic["ap50"].get<double>(), 0.75, 1e-12);
+  EXPECT_NEAR(agnostic["coco_ap"].get<double>(), 0.75, 1e-12);
+  EXPECT_EQ(agnostic["recall_score"], 0.3);
+  EXPECT_EQ(agnostic["recall_at_score"], 1.0);
+  EXPECT_NEAR(agnostic["per_class"]["ap50"].get<double>(), 5.0 / 6.0, 1e-12);
+  ASSERT_EQ(report["by_size"].size(), 4u);
+  const Json& small = report["by_size"][0];
+  EXPECT_EQ(small["label"], "<32");
+  EXPECT_EQ(small["class_agnostic"]["ground_truth"], 3);
+  EXPECT_NEAR(small["class_agnostic"]["ap50"].get<double>(), 0.75, 1e-12);
+  EXPECT_NEAR(small["per_class"]["ap50"].get<double>(), 5.0 / 6.0, 1e-12);
+  EXPECT_EQ(report["by_size"][1]["class_agnostic"]["ground_truth"], 0);
+  EXPECT_TRUE(report["by_size"][1]["class_agnostic"]["ap50"].is_null());
+  EXPECT_TRUE(report["by_size"][3]["size_px"][1].is_null());  // no upper bound
+  EXPECT_NE(r.out.find("class-agnostic AP@0.5 0.7500, AP@[.5:.95] 0.7500"), std::string::npos) << r.out;
+
   const std::string markdown = slurp(out_ / "report.md");
   EXPECT_NE(markdown.find("| mAP@0.5 (VOC all-point) | 0.8333 |"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("| all | 3 | 0.8333 | 1.0000 | 1.0000 | 0.7500 | 1.0000 | 1.0000 |"), std::string::npos)
+      << markdown;
   EXPECT_NE(markdown.find("| 1 | one | 2 | 3 | 0.6667 |"), std::string::npos) << markdown;
   const cv::Mat curves = cv::imread((out_ / "pr_curve.png").string());
   EXPECT_GE(curves.cols, 800);
@@ -169,6 +192,16 @@ TEST_F(EvalDetCli, BopFormOfTheSameDetectionsScoresTheSame) {
   EXPECT_EQ(report["detections_format"], "BOP results");
   EXPECT_NEAR(report["map50"].get<double>(), 5.0 / 6.0, 1e-12);
   EXPECT_NEAR(report["map50_95"].get<double>(), 5.0 / 6.0, 1e-12);
+}
+
+TEST_F(EvalDetCli, RecallScoreSetsTheOperatingPoint) {
+  // The hits score 0.9, 0.8 and 0.6: from 0.7, two of three.
+  const RunResult r = run(command(results()) + " --recall-score 0.7 --montage 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json report = read_json(out_ / "report.json");
+  EXPECT_NEAR(report["class_agnostic"]["recall_at_score"].get<double>(), 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(report["class_agnostic"]["recall_any"], 1.0);
+  EXPECT_NE(r.out.find("rec>=0.7"), std::string::npos) << r.out;
 }
 
 TEST_F(EvalDetCli, MontageHoldsTheFirstImages) {
@@ -239,6 +272,18 @@ TEST_F(EvalDetCli, ScoresABopFolder) {
   EXPECT_EQ(hidden["ground_truth"], 0);
   EXPECT_TRUE(hidden["voc_ap50"].is_null());
   EXPECT_TRUE(hidden["coco_ap"].is_null());
+
+  // From --min-visible 0.95 the parts less visible are crowd regions, no targets.
+  int at_least_095 = 0;
+  for (const auto& [image, parts] : info.items()) {
+    for (const Json& part : parts) at_least_095 += part["visib_fract"].get<double>() >= 0.95 ? 1 : 0;
+  }
+  ASSERT_LT(at_least_095, 3);
+  r = run(arguments + " --overwrite --montage 0 --min-visible 0.95");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = read_json(out_ / "report.json");
+  EXPECT_EQ(report["ground_truth_boxes"], at_least_095);
+  EXPECT_EQ(report["crowd_regions"], 3 - at_least_095);
 
   // COCO results name COCO image ids, which a BOP folder has not.
   expect_rejected("eval-det " + bop.string() + " --results " + results() + " --out " + (work_ / "o2").string(),
@@ -367,5 +412,31 @@ TEST(EvalDetModel, RunsTheDetectorOnEveryImage) {
   EXPECT_NEAR(report["map50"].get<double>(), 1.0, 1e-9);
   EXPECT_NEAR(report["map50_95"].get<double>(), 1.0, 1e-9);
   EXPECT_TRUE(fs::exists(out / "montage.jpg"));
+
+  // In tiles: eval-det runs the detector as detect does, so scoring detect's output for
+  // the same tiles gives the same report.
+  const std::string score = " --score 0.05 --device reference --tile 160";
+  const fs::path dets = dir / "dets.json";
+  RunResult detect = run_flexsight("detect " + (data / "rgb" / "000001.png").string() + " --model " +
+                                       tiny_ssd_model() + score + " -o " + dets.string(),
+                                   dir);
+  ASSERT_EQ(detect.exit_code, 0) << detect.err;
+  EXPECT_NE(detect.err.find("tiles of 160 px, stride 120 px"), std::string::npos) << detect.err;
+  RunResult tiled = run_flexsight("eval-det " + data.string() + " --model " + tiny_ssd_model() + score +
+                                      " --out " + (dir / "tiled").string(),
+                                  dir);
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  RunResult scored = run_flexsight("eval-det " + data.string() + " --results " + dets.string() + " --out " +
+                                       (dir / "scored").string(),
+                                   dir);
+  ASSERT_EQ(scored.exit_code, 0) << scored.err;
+  const Json from_tiles = read_json(dir / "tiled" / "report.json");
+  const Json from_detect = read_json(dir / "scored" / "report.json");
+  EXPECT_EQ(from_tiles["detections_format"], "model run by eval-det, tiles of 160 px (stride 120)");
+  EXPECT_GT(from_tiles["detections"].get<int>(), 0);
+  EXPECT_EQ(from_tiles["detections"], from_detect["detections"]);
+  EXPECT_EQ(from_tiles["map50"], from_detect["map50"]);
+  EXPECT_EQ(from_tiles["class_agnostic"], from_detect["class_agnostic"]);
+  EXPECT_EQ(from_tiles["by_size"], from_detect["by_size"]);
   fs::remove_all(dir);
 }

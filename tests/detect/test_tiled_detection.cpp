@@ -95,5 +95,19 @@ TEST(TiledDetection, WholeImageOnlyWithoutTiles) {
   EXPECT_EQ(calls, 1);
 }
 
+TEST(TiledDetection, FixedTilesOverlapByAQuarterAndMustFit) {
+  const TilingPlan plan = fixed_tiling(320);
+  EXPECT_EQ(plan.tile, 320);
+  EXPECT_EQ(plan.stride, 240);
+  EXPECT_EQ(fixed_tiling(0).tile, 0);  // the whole image
+  EXPECT_EQ(fixed_tiling(1).stride, 1);
+  // 640 x 480 in 320-pixel tiles: three columns (0, 160, 320), two rows (0, 160).
+  EXPECT_EQ(detection_tiles({640, 480}, plan).size(), 6u);
+  EXPECT_TRUE(tile_fits({640, 480}, 480));
+  EXPECT_FALSE(tile_fits({640, 480}, 481));  // wider than the image is tall
+  EXPECT_FALSE(tile_fits({300, 700}, 301));
+  EXPECT_TRUE(tile_fits({300, 700}, 0));
+}
+
 }  // namespace
 }  // namespace flexsight

@@ -10,7 +10,9 @@ duplicates, false positives, classes without ground truth) in both result forms,
 `FLEXSIGHT eval-det`, and requires:
   * map50_95, ap50_coco, ap75 and every class's coco_ap within 1e-6 of COCOeval's;
   * map50, map_at_iou_threshold and every class's voc_ap50 within 1e-9 of the VOC AP below;
-  * the BOP form of the same detections to give the same report numbers.
+  * the BOP form of the same detections to give the same report numbers;
+  * the class-agnostic figures: coco_ap within 1e-6 of COCOeval's with useCats = 0, ap50
+    within 1e-9 of the VOC AP above with every box relabelled one class.
 Fails (never skips) without pycocotools: CMake runs it with FLEXSIGHT_COCO_PYTHON, the
 venv scripts/setup.sh makes.
 """
@@ -195,12 +197,13 @@ def make_scenario(folder, seed, images=12, crowd=False, tied_scores=False, crowd
 
 # ---- the references --------------------------------------------------------------------
 
-def pycocotools_scores(coco_path, dets_path):
+def pycocotools_scores(coco_path, dets_path, use_categories=True):
     """COCOeval's stats[0:3] and each class's AP@[.5:.95] (mean of its precision entries)."""
     with contextlib.redirect_stdout(io.StringIO()):
         gt = COCO(coco_path)
         dt = gt.loadRes(dets_path)
         evaluation = COCOeval(gt, dt, "bbox")
+        evaluation.params.useCats = 1 if use_categories else 0
         evaluation.evaluate()
         evaluation.accumulate()
         evaluation.summarize()
@@ -272,6 +275,36 @@ def voc_aps(coco_path, dets_path, threshold):
     return aps
 
 
+def one_class_copies(coco_path, dets_path, folder):
+    """The data set and detections with every box in category 1, boxes ordered by their
+    category first (stable), as eval-det and COCOeval (useCats = 0) pool an image's boxes."""
+    with open(coco_path) as f:
+        coco = json.load(f)
+    with open(dets_path) as f:
+        dets = json.load(f)
+    coco["annotations"] = sorted(coco["annotations"], key=lambda a: a["category_id"])
+    dets = sorted(dets, key=lambda d: d["category_id"])
+    for box in coco["annotations"] + dets:
+        box["category_id"] = 1
+    coco["categories"] = [{"id": 1, "name": "part"}]
+    paths = os.path.join(folder, "coco_one_class.json"), os.path.join(folder, "dets_one_class.json")
+    for path, data in zip(paths, (coco, dets)):
+        with open(path, "w") as f:
+            json.dump(data, f)
+    return paths
+
+
+def compare_class_agnostic(name, folder, coco_path, dets, ours):
+    agnostic = ours["class_agnostic"]
+    stats, _ = pycocotools_scores(coco_path, dets, use_categories=False)
+    check(abs(agnostic["coco_ap"] - stats[0]) <= 1e-6,
+          "%s: class-agnostic coco_ap is %.9f, pycocotools (useCats 0) says %.9f" % (name, agnostic["coco_ap"], stats[0]))
+    voc = voc_aps(*one_class_copies(coco_path, dets, folder), 0.5)
+    check(abs(agnostic["ap50"] - voc[1]) <= 1e-9,
+          "%s: class-agnostic ap50 is %.9f, the Python VOC AP of one class %.9f" % (name, agnostic["ap50"], voc[1]))
+    return agnostic["ap50"], agnostic["coco_ap"], stats[0]
+
+
 # ---- the comparison --------------------------------------------------------------------
 
 def run_eval_det(flexsight, dataset, dets, out, threshold):
@@ -330,9 +363,11 @@ def compare(name, folder, flexsight, threshold, **options):
     # The fixture must exercise the metrics, not sit at 0 or 1.
     check(0.05 < ours["map50_95"] < 0.95 and 0.05 < ours["map50"] < 0.98,
           "%s: degenerate fixture, map50 %.3f map50_95 %.3f" % (name, ours["map50"], ours["map50_95"]))
+    agnostic = compare_class_agnostic(name, folder, coco_path, dets, ours)
     print("%-14s map50 %.6f  map50_95 %.6f (pycocotools %.6f)  ap50 %.6f (%.6f)  ap75 %.6f (%.6f)"
-          % (name, ours["map50"], ours["map50_95"], stats[0], ours["ap50_coco"], stats[1],
-             ours["ap75"], stats[2]))
+          "  class-agnostic ap50 %.6f  coco %.6f (%.6f)"
+          % ((name, ours["map50"], ours["map50_95"], stats[0], ours["ap50_coco"], stats[1],
+              ours["ap75"], stats[2]) + agnostic))
 
 
 def main():
