@@ -57,6 +57,9 @@ void print_help() {
          "  --top-k K               candidates per class entering suppression, 1..1024\n"
          "                          (default 100)\n"
          "  --max-detections N      detections per image at most, 1..100000 (default 100)\n"
+         "  --parts IDS             known-part mode: only these classes (object ids separated\n"
+         "                          by commas, e.g. 5,12), scored by the softmax over them and\n"
+         "                          the background (docs/detect.md)\n"
          "  --dnn-target cpu|opencl where OpenCV DNN runs the network (default cpu; opencl: on\n"
          "                          OpenCV's own OpenCL device, GPUs only unless\n"
          "                          OPENCV_DNN_OPENCL_ALLOW_ALL_DEVICES=1)\n"
@@ -109,6 +112,9 @@ DetectOptions take_detect_options(std::vector<std::string>& args) {
   const std::string target = take_option(args, "--dnn-target");
   if (!target.empty()) d.dnn_target = parse_dnn_target(target);
   options.tile = take_tile_option(args);
+  const bool parts_given = std::find(args.begin(), args.end(), "--parts") != args.end();
+  const std::string parts = take_option(args, "--parts");
+  if (parts_given) d.parts = parse_known_parts(parts);
   options.threads = whole_option(args, "--threads", 0, 0, 1024);
   options.quiet = take_flag(args, "--quiet");
   options.backend = take_backend_options(args);

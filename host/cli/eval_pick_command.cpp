@@ -57,7 +57,8 @@ void write_bin_outputs(const fs::path& stem, const BinPickRun& run, const BinFil
                        const PickSession& session) {
   dataset_files::write_text(stem.string() + ".json",
                             pick_json(run.result, {files.left, files.right, files.calib, settings.model,
-                                                   settings.templates, settings.cad, files.left_passive}));
+                                                   settings.templates, settings.cad, files.left_passive,
+                                                   settings.detector.parts.obj_ids}));
   cv::Mat picture;
   cv::cvtColor(pick_picture(run.left_view, run.result, session.models()), picture, cv::COLOR_BGR2RGB);
   write_image(stem.string() + ".png", picture);

@@ -131,7 +131,7 @@ int run_pick_command(std::vector<std::string> args) {
   if (!output.empty()) {
     const std::string json =
         pick_json(result, {inputs.left, inputs.right, inputs.calib, settings.model, settings.templates, settings.cad,
-                           inputs.passive_left});
+                           inputs.passive_left, settings.detector.parts.obj_ids});
     write_atomically(output, [&](const std::string& tmp) {
       std::ofstream out(tmp);
       out << json;

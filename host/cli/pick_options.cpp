@@ -9,6 +9,7 @@
 #include "host/io/calibration.h"
 #include "host/io/input_error.h"
 #include "host/dataset/detection_data.h"
+#include "host/detect/known_parts.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -35,6 +36,8 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const double score = take_number_option(args, "--score", kPickDetectionScore);
   const std::string threads = take_option(args, "--threads");
   const std::string tile = take_option(args, "--tile");
+  const bool parts_given = std::find(args.begin(), args.end(), "--parts") != args.end();
+  const std::string parts = take_option(args, "--parts");
   const std::string classes = take_option(args, "--classes-per-box");
   const std::string downscale = take_option(args, "--stereo-downscale");
   const std::string half_turns = take_option(args, "--half-turns");
@@ -60,6 +63,7 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   } else if (!tile.empty() && tile != "auto") {
     settings.detection_tile = static_cast<int>(parse_whole_number("--tile", tile, 64, 8192));
   }
+  if (parts_given) settings.detector.parts = parse_known_parts(parts);
   if (settings.templates.empty()) {
     throw InputError("option --templates", "missing (make them once with flexsight pose-templates CAD_DIR -o FILE)");
   }
@@ -78,6 +82,10 @@ std::string pick_options_help() {
           "                     about 0.29 of a tile, as in the detector's training images,\n"
           "                     from the parts' diameters and the measured depth; off: the\n"
           "                     whole image; N: tiles of N pixels (64..8192)\n"
+          "  --parts IDS        known-part mode: the parts this cell handles, object ids\n"
+          "                     separated by commas (e.g. 5,12); only their classes are\n"
+          "                     detected (the softmax over them and the background) and\n"
+          "                     posed (default: every class of the detector)\n"
           "  --score S          detections scoring above S are posed (default 0.03: the\n"
           "                     detector proposes, the pose's fit decides)\n"
           "  --classes-per-box K  the detector's K best classes at a box are each posed, the\n"

@@ -1,6 +1,7 @@
 // flexsight synth bin: bins of T-LESS parts dropped with rigid-body physics, seen by the
 // active stereo rig (room light and a red dot projector), one MiddEval3 + BOP scene
 // folder per bin (host/sim/, docs/sim.md).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "host/dataset/detection_data.h"
 #include "host/io/atomic_file.h"
 #include "host/io/input_error.h"
+#include "host/io/object_ids.h"
 #include "host/io/progress_bar.h"
 #include "host/io/staged_folder.h"
 #include "host/sim/bin_scene.h"
@@ -66,7 +68,10 @@ void print_help() {
          "  --count N             bins to make (required)\n"
          "  --seed S              every bin is a function of (seed, bin index) (default 1)\n"
          "  --cad DIR             the parts: STL, PLY, OBJ in mm (default " << default_cad_dir() << ")\n"
-         "  --parts MIN..MAX      parts dropped per bin (default 10..20)\n"
+         "  --parts IDS           the parts the bins are made of: object ids separated by\n"
+         "                        commas (e.g. 5 or 5,12; default: every part of --cad)\n"
+         "  --parts MIN..MAX      (the older form, with '..') parts dropped per bin, as\n"
+         "                        --min-parts and --max-parts (default 10..20)\n"
          "  --size WxH            image size of both cameras (default 1280x960)\n"
          "  --volume XxYxZ        working volume, mm (default 600x400x400)\n"
          "  --bin LxWxH           bin: inner floor and wall height, mm (default 500x340x120)\n"
@@ -92,14 +97,17 @@ struct SynthBinOptions {
   std::int64_t count = 0;
   std::uint32_t seed = 1;
   std::string cad;  // empty: default_cad_dir()
+  std::vector<int> part_ids;  // --parts IDS: the bins are made of these parts only; empty: all
 };
 
-// --parts MIN..MAX into the settings.
-void set_parts_range(const std::string& parts_text, BinSimSettings& settings) {
+// --parts MIN..MAX (the older form, with '..') into the settings; --parts IDS otherwise.
+void set_parts_option(const std::string& parts_text, SynthBinOptions& options) {
   const std::size_t dots = parts_text.find("..");
   if (dots == std::string::npos) {
-    throw InputError("option --parts", "expected MIN..MAX (e.g. 10..20), got '" + parts_text + "'");
+    options.part_ids = parse_object_ids(parts_text, "--parts");
+    return;
   }
+  BinSimSettings& settings = options.settings;
   settings.min_parts = int(parse_whole_number("--parts", parts_text.substr(0, dots), 1, 200));
   settings.max_parts = int(parse_whole_number("--parts", parts_text.substr(dots + 2), 1, 200));
 }
@@ -112,6 +120,7 @@ SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
   const std::string count_text = take_option(args, "--count");
   const std::string seed_text = take_option(args, "--seed");
   options.cad = take_option(args, "--cad");
+  const bool parts_given = std::find(args.begin(), args.end(), "--parts") != args.end();
   const std::string parts_text = take_option(args, "--parts");
   const std::string pattern_seed_text = take_option(args, "--pattern-seed");
   const std::string threads_text = take_option(args, "--threads");
@@ -135,7 +144,7 @@ SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
         static_cast<std::uint32_t>(parse_whole_number("--pattern-seed", pattern_seed_text, 0, 4294967295LL));
   }
   if (!threads_text.empty()) settings.threads = int(parse_whole_number("--threads", threads_text, 0, 4096));
-  if (!parts_text.empty()) set_parts_range(parts_text, settings);
+  if (parts_given) set_parts_option(parts_text, options);
   settings.projector.power = float(power);
   settings.check();
   return options;
@@ -179,6 +188,7 @@ void write_sim_info(const std::string& folder, const SynthBinOptions& options, c
                          {"pattern_seed", settings.projector.pattern_seed},
                          {"settings", settings_json(bin_setting_options(named), settings.rig.width,
                                                     settings.rig.height)}};
+  if (!options.part_ids.empty()) info["part_ids"] = options.part_ids;
   write_atomically(folder + "/sim_info.json", [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << info.dump(2) << "\n";
@@ -193,7 +203,9 @@ int run_synth_bin_command(std::vector<std::string> args) {
   const SynthBinOptions options = parse_synth_bin_options(std::move(args));
   check_bin_folders(options);
   const std::string cad = options.cad.empty() ? default_cad_dir() : options.cad;
-  const PartLibrary parts = PartLibrary::load_folder(cad);
+  const PartLibrary parts = options.part_ids.empty()
+                                ? PartLibrary::load_folder(cad)
+                                : select_parts(PartLibrary::load_folder(cad), options.part_ids, "--parts", cad);
   const BinSimulator simulator(options.settings, parts);
 
   const fs::path root(options.output);

@@ -125,6 +125,18 @@ SsdOutputs SsdNetworkOutputs::view() const {
   return outputs;
 }
 
+namespace {
+
+// ", known parts 5,12" for planned(); empty for every class.
+std::string known_parts_text(const std::vector<int>& known_classes, const std::vector<DetectorLabel>& labels) {
+  if (known_classes.empty()) return "";
+  std::string ids;
+  for (int c : known_classes) ids += (ids.empty() ? "" : ",") + std::to_string(labels.at(c).category_id);
+  return ", known parts " + ids;
+}
+
+}  // namespace
+
 struct SsdDetector::Impl {
   DetectorFiles files;
   DetectorSettings settings;
@@ -134,6 +146,8 @@ struct SsdDetector::Impl {
   int anchors = 0;
   int classes = 0;
   std::vector<DetectorLabel> labels;
+  // The known parts' classes (options.parts), ascending; empty: every class.
+  std::vector<int> known_classes;
   std::unique_ptr<SsdPostprocessor> post;
 };
 
@@ -193,6 +207,7 @@ void SsdDetector::load(const std::string& model_path, ComputeBackend& backend,
                                          std::to_string(m.classes) +
                                          " classes and the background)");
   }
+  m.known_classes = known_part_classes(options.parts, m.labels, m.files.model);
   m.post =
       std::make_unique<SsdPostprocessor>(backend, read_anchor_file(m.files.anchors, m.anchors));
 }
@@ -237,14 +252,21 @@ SsdNetworkOutputs SsdDetector::forward(const cv::Mat& blob) {
 std::vector<ObjectDetection> SsdDetector::postprocess(const SsdNetworkOutputs& outputs,
                                                       cv::Size image_size) {
   Impl& m = *impl_;
-  const std::vector<Detection> found = m.post->run(outputs.view(), m.params);
+  // Known parts: the background and their classes' logits only (known_parts.h says why).
+  SsdNetworkOutputs known;
+  if (!m.known_classes.empty()) {
+    known.box_encodings = outputs.box_encodings;
+    known.class_logits = known_part_logits(outputs.class_logits, m.known_classes);
+  }
+  const std::vector<Detection> found =
+      m.post->run(m.known_classes.empty() ? outputs.view() : known.view(), m.params);
   std::vector<ObjectDetection> objects;
   objects.reserve(found.size());
   for (const Detection& normalised : found) {
     const Detection d = detection_in_pixels(normalised, image_size.width, image_size.height);
     ObjectDetection object;
-    object.class_id = d.class_id;
-    object.category_id = m.labels.at(static_cast<size_t>(d.class_id)).category_id;
+    object.class_id = m.known_classes.empty() ? d.class_id : m.known_classes.at(static_cast<size_t>(d.class_id));
+    object.category_id = m.labels.at(static_cast<size_t>(object.class_id)).category_id;
     object.score = d.score;
     for (int k = 0; k < 4; ++k) object.box[k] = d.box[k];
     object.anchor = d.anchor;
@@ -279,7 +301,7 @@ std::string SsdDetector::planned() const {
   return "network on OpenCV DNN (" + std::string(dnn_target_name(impl_->target)) + ", " +
          std::to_string(size) + "x" + std::to_string(size) + " input, " +
          std::to_string(impl_->anchors) + " anchors, " + std::to_string(impl_->classes) +
-         " classes, " + score_function_name(impl_->params.score_function) +
+         " classes" + known_parts_text(impl_->known_classes, impl_->labels) + ", " + score_function_name(impl_->params.score_function) +
          " scores), post-processing on the " + impl_->post->planned();
 }
 

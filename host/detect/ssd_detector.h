@@ -22,6 +22,7 @@
 
 #include "host/detect/detection.h"
 #include "host/detect/detector_model.h"
+#include "host/detect/known_parts.h"
 #include "host/detect/ssd_params.h"
 #include "host/runtime/compute_backend.h"
 
@@ -56,6 +57,9 @@ struct SsdDetectorOptions {
   int max_detections = 100;
   // Where the network runs.
   DnnTarget dnn_target = DnnTarget::Cpu;
+  // The parts the cell handles (known_parts.h): only their classes are scored and
+  // returned; empty: every class of the model.
+  KnownParts parts;
 };
 
 // One detected object in the pixels of the image given to detect().
@@ -94,7 +98,8 @@ class SsdDetector {
   // InputError naming the file: the ONNX file missing or unreadable by OpenCV, an output
   // missing or not of the shape above, model.json's (detector_model.h), labels.txt's
   // count other than the logit columns - 1, anchors.csv's rows other than the network's
-  // output rows; options out of range name the option. The network runs once on a blank
+  // output rows; options out of range name the option, a known part that is not a class
+  // of the model names --parts. The network runs once on a blank
   // image here, so shapes are known and the first detect() is not slower than the rest.
   // Post-processing runs on `backend` (which must outlive this).
   SsdDetector(const std::string& model_path, ComputeBackend& backend,

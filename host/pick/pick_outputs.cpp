@@ -60,7 +60,8 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
   Json document = {
       {"inputs", {{"left", inputs.left}, {"right", inputs.right}, {"calib", inputs.calib}, {"model", inputs.model},
                   {"templates", inputs.templates}, {"cad", inputs.cad},
-                  {"passive_left", inputs.passive_left.empty() ? Json(nullptr) : Json(inputs.passive_left)}}},
+                  {"passive_left", inputs.passive_left.empty() ? Json(nullptr) : Json(inputs.passive_left)},
+                  {"parts", inputs.parts.empty() ? Json(nullptr) : Json(inputs.parts)}}},
       {"image_size", {result.disparity.cols, result.disparity.rows}},
       {"camera", {{"fx", result.camera.fx}, {"fy", result.camera.fy}, {"cx", result.camera.cx}, {"cy", result.camera.cy}}},
       {"frame", "left camera: x right, y down, z forward, mm; R row-major maps model to camera"},

@@ -3,6 +3,7 @@
 // JSON (docs/pick.md documents every key) and one picture with the boxes and the parts'
 // outlines.
 #include <string>
+#include <vector>
 
 #include "host/pick/pick_session.h"
 
@@ -11,6 +12,7 @@ namespace flexsight {
 struct PickInputsDescription {
   std::string left, right, calib, model, templates, cad;
   std::string passive_left;  // empty: none given
+  std::vector<int> parts;    // known-part mode's object ids; empty: every part
 };
 
 // The JSON document of a pick (docs/pick.md, "PICKS.json").

@@ -102,6 +102,20 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
   return picks;
 }
 
+// Known-part mode: every known part needs its templates (and so its CAD model; the
+// detector class is checked by the detector). Only these are posed, so the templates
+// file may hold the cell's parts alone.
+void check_known_parts(const KnownParts& parts, const PoseModels& models, const PickSettings& settings) {
+  for (int id : parts.obj_ids) {
+    if (models.has(id)) continue;
+    // Which of the two is missing, read again on this error path only.
+    const bool has_cad = PartLibrary::load_folder(settings.cad).index_of(id) >= 0;
+    throw InputError("option --parts", "object " + std::to_string(id) + " has no " +
+                                           (has_cad ? "templates in " + settings.templates
+                                                    : "CAD model in " + settings.cad));
+  }
+}
+
 }  // namespace
 
 struct PickSession::Impl {
@@ -117,6 +131,10 @@ struct PickSession::Impl {
         stereo(compute),
         detector(s.model, compute, s.detector),
         models(s.templates, s.cad) {
+    if (!s.detector.parts.every_part()) {
+      check_known_parts(s.detector.parts, models, s);
+      return;
+    }
     for (const DetectorLabel& label : detector.labels()) {
       if (!models.has(label.category_id)) {
         throw InputError(s.model, "detects object " + std::to_string(label.category_id) + " (" + label.name +
@@ -152,7 +170,9 @@ TilingPlan PickSession::detection_tiling(cv::Size image, const PinholeCamera& ca
   const double depth = depths[depths.size() / 2];
   std::vector<double> diameters;
   for (const DetectorLabel& label : impl_->detector.labels()) {
-    diameters.push_back(impl_->models.mesh(label.category_id).diameter);
+    if (settings.detector.parts.contains(label.category_id)) {
+      diameters.push_back(impl_->models.mesh(label.category_id).diameter);
+    }
   }
   std::sort(diameters.begin(), diameters.end());
   const double focal = camera.fx;

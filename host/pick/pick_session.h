@@ -23,6 +23,7 @@ namespace flexsight {
 struct PickSettings {
   StereoParams stereo;
   BackendOptions backend;
+  // detector.parts: known-part mode (host/detect/known_parts.h), only those detected and posed.
   SsdDetectorOptions detector;
   PoseEstimatorParams pose;
   std::string model;      // the detector (resolved path)
@@ -66,7 +67,10 @@ class PickSession {
  public:
   // Loads and checks everything before any image: the detector (its files), the
   // templates against the CAD folder, and that every class the detector knows has a
-  // model and templates (else an InputError naming --model). Builds the OpenCL parts.
+  // model and templates (else an InputError naming --model). With known parts
+  // (settings.detector.parts) only those are detected and posed: each must be a class
+  // of the detector and have a CAD model and templates (else an InputError naming
+  // --parts and what is missing). Builds the OpenCL parts.
   explicit PickSession(const PickSettings& settings);
   ~PickSession();
   PickSession(const PickSession&) = delete;

@@ -80,6 +80,21 @@ PartLibrary::~PartLibrary() = default;
 PartLibrary::PartLibrary(PartLibrary&&) noexcept = default;
 PartLibrary& PartLibrary::operator=(PartLibrary&&) noexcept = default;
 
+PartLibrary select_parts(const PartLibrary& library, const std::vector<int>& obj_ids, const std::string& option,
+                         const std::string& folder) {
+  for (int id : obj_ids) {
+    if (library.index_of(id) < 0) {
+      throw InputError("option " + option, "object " + std::to_string(id) + " has no CAD model in " + folder);
+    }
+  }
+  std::vector<LibraryPart> chosen;
+  for (int i = 0; i < library.size(); ++i) {
+    const LibraryPart& part = library.part(i);
+    if (std::find(obj_ids.begin(), obj_ids.end(), part.obj_id) != obj_ids.end()) chosen.push_back(part);
+  }
+  return PartLibrary(std::move(chosen));
+}
+
 int PartLibrary::index_of(int obj_id) const {
   for (size_t i = 0; i < parts_.size(); ++i) {
     if (parts_[i].obj_id == obj_id) return static_cast<int>(i);

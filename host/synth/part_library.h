@@ -48,6 +48,12 @@ class PartLibrary {
   std::unique_ptr<ScenePool> pool_;
 };
 
+// The parts of `library` with these obj_ids, in the library's order: a bin or a data set
+// made of some parts only. InputError naming `option` for an id that no file of `folder`
+// (where the library was read) gives.
+PartLibrary select_parts(const PartLibrary& library, const std::vector<int>& obj_ids, const std::string& option,
+                         const std::string& folder);
+
 // The object id a file name without its extension gives: its last run of digits
 // ("obj_000005" -> 5), -1 when it has none or more than nine.
 int object_id_from_name(const std::string& stem);

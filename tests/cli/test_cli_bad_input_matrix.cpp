@@ -443,4 +443,41 @@ TEST_F(BadInputMatrix, DataSetsOutputsAndBinsAreCheckedBeforeTheWork) {
   for (const Case& c : cases) expect_refused(c.arguments, c.must_mention, c.also_mention);
 }
 
+// --parts (known-part mode): an id the detector, the CAD folder or the templates lack, and
+// malformed lists, refused naming --parts, the id and what is missing, before any work.
+// one.tpl and cad1 hold object 2 alone; the detector knows the 23 parts of the T-LESS CAD.
+TEST_F(BadInputMatrix, KnownPartsAreCheckedBeforeTheWork) {
+  const std::string d = dir_.string() + "/";
+  const std::string r = root_.string() + "/";
+  const std::string cad = FLEXSIGHT_TLESS_CAD_DIR;
+  const std::string pick = "pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + r +
+                           "one.tpl -o " + d + "existing.json --png " + d + "existing.png";
+  const std::string eval_pick = "eval-pick " + r + "bins --templates " + r + "one.tpl --out " + d + "pick_out";
+  const std::string detect = "detect " + d + "left.png -o " + d + "existing.json";
+  const std::string bins = "synth bin --count 1 --size 64x48 -o " + d + "bins_out";
+  std::vector<Case> cases = {
+      // not a class of the detector
+      {detect + " --parts 2,99", "--parts", "object 99 is not a class of the detector"},
+      {pick + " --cad " + r + "cad1 --parts 99", "--parts", "object 99 is not a class of the detector"},
+      {eval_pick + " --cad " + r + "cad1 --parts 99", "--parts", "object 99 is not a class of the detector"},
+      // a class of the detector without a CAD model
+      {pick + " --cad " + r + "cad1 --parts 2,4", "--parts", "object 4 has no CAD model in " + r + "cad1"},
+      {eval_pick + " --cad " + r + "cad1 --parts 4", "--parts", "object 4 has no CAD model in " + r + "cad1"},
+      {bins + " --cad " + r + "cad1 --parts 4", "--parts", "object 4 has no CAD model in " + r + "cad1"},
+      // a CAD model without templates
+      {pick + " --cad " + cad + " --parts 2,4", "--parts", "object 4 has no templates in " + r + "one.tpl"},
+      {eval_pick + " --cad " + cad + " --parts 4", "--parts", "object 4 has no templates in " + r + "one.tpl"},
+  };
+  // Malformed lists, through every command that takes one.
+  const std::vector<std::pair<std::string, std::string>> lists = {
+      {"''", "empty list"},        {"2,", "got ''"}, {"2,x", "got 'x'"}, {"2,2", "object 2 is given twice"},
+      {"0", "object ids start at 1"}, {"-2", "got '-2'"}};
+  for (const auto& [list, problem] : lists) {
+    for (const std::string& command : {detect, pick + " --cad " + r + "cad1", eval_pick + " --cad " + r + "cad1", bins}) {
+      cases.push_back({command + " --parts " + list, "option --parts", problem});
+    }
+  }
+  for (const Case& c : cases) expect_refused(c.arguments, c.must_mention, c.also_mention);
+}
+
 }  // namespace

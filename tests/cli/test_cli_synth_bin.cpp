@@ -3,6 +3,9 @@
 // nothing written.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+#include <set>
+
 #include "host/eval/dataset.h"
 #include "tests/cli/synth_test_support.h"
 
@@ -68,11 +71,44 @@ TEST_F(SynthBin, BadInputNamesTheOptionAndWritesNothing) {
   expect_rejected(small() + " --focal 5000", "--focal");
   expect_rejected(small() + " --projector-fov 180", "--projector-fov");
   expect_rejected(small() + " --dots 0", "--dots");
-  expect_rejected(small() + " --parts 5..2", "--parts");
-  expect_rejected(small() + " --parts 5", "--parts");
+  // --parts without small()'s own --parts 3..3 (a second --parts is an unknown option).
+  const std::string unsized = "synth bin --cad " + std::string(FLEXSIGHT_TLESS_CAD_DIR) + " --size 160x120 --count 1";
+  expect_rejected(unsized + " --parts 5..2", "--parts: expected MIN..MAX");
+  expect_rejected(unsized + " --parts 5..", "--parts: expected a whole number");
+  expect_rejected(unsized + " --parts 3", "--parts: object 3 has no CAD model");
+  expect_rejected(unsized + " --parts 5,3", "--parts: object 3 has no CAD model");
+  expect_rejected(unsized + " --parts 5,5", "--parts: object 5 is given twice");
+  expect_rejected(unsized + " --parts 0", "--parts: object ids start at 1");
+  expect_rejected(unsized + " --parts -5", "--parts: expected object ids");
+  expect_rejected(unsized + " --parts 5,x", "--parts: expected object ids");
+  expect_rejected(unsized + " --parts 5,", "--parts: expected object ids");
+  expect_rejected(unsized + " --parts ''", "--parts: expected object ids");
   expect_rejected(small() + " --size 0x10", "--size");
   expect_rejected(small("1", "1", (dir_ / "nowhere").string()), "nowhere");
   expect_rejected(small() + " --frobnicate 3", "--frobnicate");
+}
+
+// --parts IDS: bins of those parts only, the ids in sim_info.json; without it no
+// part_ids key (the default bins' bytes as before).
+TEST_F(SynthBin, ChosenPartsMakeBinsOfThosePartsOnly) {
+  const std::string base = "synth bin --cad " + std::string(FLEXSIGHT_TLESS_CAD_DIR) +
+                           " --size 160x120 --min-parts 6 --max-parts 6 --noise 1 --count 2 --seed 4";
+  ASSERT_EQ(run_flexsight(base + " --parts 12,5 -o " + (dir_ / "chosen").string(), dir_).exit_code, 0);
+  ASSERT_EQ(run_flexsight(base + " -o " + (dir_ / "all").string(), dir_).exit_code, 0);
+  std::set<int> chosen_ids, all_ids;
+  for (const char* bin : {"bin000", "bin001"}) {
+    for (const auto& [folder, ids] : {std::pair{"chosen", &chosen_ids}, std::pair{"all", &all_ids}}) {
+      const auto truth = nlohmann::json::parse(slurp(dir_ / folder / bin / "scene_gt.json"));
+      for (const auto& image : truth) {
+        for (const auto& part : image) ids->insert(part.at("obj_id").get<int>());
+      }
+    }
+    const auto info = nlohmann::json::parse(slurp(dir_ / "chosen" / bin / "sim_info.json"));
+    EXPECT_EQ(info.at("part_ids"), nlohmann::json::array({5, 12}));
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir_ / "all" / bin / "sim_info.json")).contains("part_ids"));
+  }
+  EXPECT_EQ(chosen_ids, (std::set<int>{5, 12}));  // 12 parts dropped: both drawn
+  EXPECT_GT(all_ids.size(), 2u);
 }
 
 TEST_F(SynthBin, ExistingBinsAreKeptWithoutOverwrite) {

@@ -2,14 +2,19 @@
 // PickSession loads the detector, the templates and the parts once and serves pair after
 // pair. On a small simulated bin (`synth bin`, four T-LESS parts under the projector) two
 // calls give the same picks (nothing the first call leaves behind changes the second),
-// ranked best first, each pose with a rotation.
+// ranked best first, each pose with a rotation. Known-part mode poses only the known parts
+// and needs only their templates.
 #include "host/pick/pick_session.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <set>
+
 #include "host/detect/detector_model.h"
+#include "host/io/input_error.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/middeval3_files.h"
@@ -30,6 +35,13 @@ class PickSessionApi : public ::testing::Test {
                                 *dir_);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     r = run_flexsight("pose-templates " + cad + " --views 40 --threads 2 -o " + (*dir_ / "parts.tpl").string(), *dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // A cell of one part: the CAD folder and templates of object 2 alone.
+    fs::create_directories(*dir_ / "cad2");
+    fs::copy(cad + "/obj_02.stl", *dir_ / "cad2" / "obj_02.stl");
+    r = run_flexsight("pose-templates " + (*dir_ / "cad2").string() + " --views 1 --points 4 --threads 1 -o " +
+                          (*dir_ / "two.tpl").string(),
+                      *dir_);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   static void TearDownTestSuite() {
@@ -93,6 +105,62 @@ TEST_F(PickSessionApi, OneSessionServesTwoCallsWithTheSameRankedPicks) {
     EXPECT_NEAR(c.pose.R.determinant(), 1.0, 1e-6);
     EXPECT_GT(c.pose.t.z(), 0.0) << "in front of the camera";
   }
+}
+
+// Known parts: the object of the full run's first pick and the best-scored other class
+// the detector found. Every detection, proposal and pick is one of them. (Whether the
+// poses are right is eval-pick's to measure: this 480x360 bin is too small for that.)
+TEST_F(PickSessionApi, KnownPartsAreTheOnlyOnesDetectedAndPosed) {
+  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
+  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
+  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
+  const cv::Mat passive = load_rgb8(bin.left_passive);
+
+  PickSession every(settings(bin));
+  const PickResult all = every.pick(pair.left, pair.right, rig, passive);
+  ASSERT_FALSE(all.picks.empty());
+  std::set<int> known = {all.picks.front().obj_id};
+  for (const ObjectDetection& d : all.detections) {  // best first
+    if (known.size() < 2) known.insert(d.category_id);
+  }
+  ASSERT_EQ(known.size(), 2u) << "the full run should detect two classes at least";
+  const bool others = std::any_of(all.detections.begin(), all.detections.end(),
+                                  [&](const ObjectDetection& d) { return !known.count(d.category_id); });
+  ASSERT_TRUE(others) << "the full run should detect classes to leave out";
+
+  PickSettings s = settings(bin);
+  s.detector.parts.obj_ids.assign(known.begin(), known.end());
+  PickSession session(s);
+  const PickResult result = session.pick(pair.left, pair.right, rig, passive);
+  ASSERT_FALSE(result.detections.empty());
+  for (const ObjectDetection& d : result.detections) EXPECT_TRUE(known.count(d.category_id)) << d.category_id;
+  for (const PickCandidate& c : result.proposals) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
+  ASSERT_FALSE(result.picks.empty());
+  for (const PickCandidate& c : result.picks) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
+}
+
+// A cell's templates may hold its parts alone; a known part without templates or CAD
+// model, or not a class of the detector, is refused naming --parts.
+TEST_F(PickSessionApi, KnownPartsNeedTheirOwnTemplatesOnly) {
+  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
+  PickSettings s = settings(bin);
+  s.templates = (*dir_ / "two.tpl").string();
+  s.cad = (*dir_ / "cad2").string();
+  const auto error_of = [&](const std::vector<int>& parts) -> std::string {
+    s.detector.parts.obj_ids = parts;
+    try {
+      PickSession session(s);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of({2}), "");
+  EXPECT_NE(error_of({}).find(s.model + ": detects object"), std::string::npos) << error_of({});
+  EXPECT_NE(error_of({2, 4}).find("option --parts: object 4 has no CAD model in " + s.cad), std::string::npos);
+  EXPECT_NE(error_of({2, 99}).find("option --parts: object 99 is not a class of the detector"), std::string::npos);
+  s.cad = FLEXSIGHT_TLESS_CAD_DIR;
+  EXPECT_NE(error_of({2, 4}).find("option --parts: object 4 has no templates in " + s.templates), std::string::npos);
 }
 
 }  // namespace
