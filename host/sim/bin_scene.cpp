@@ -157,12 +157,13 @@ cv::Mat to_8bit(const cv::Mat& radiance, const BinVariation& look, int camera, d
 }
 
 // The scene of a bin: the resting parts first (instance ids 0..n-1, the BOP gt ids), each
-// a grey drawn from `look`, then bin and table. `parts` gets the parts, `world_poses` the
-// world pose of every instance.
+// a grey drawn from `look` or the varied bin's material, then bin and table. `parts` gets
+// the parts, `world_poses` the world pose of every instance.
 void compose_bin_scene(const PhysicsResult& physics, const PartLibrary& library,
                        const std::shared_ptr<const Mesh>& bin_mesh,
                        const std::shared_ptr<const Mesh>& table_mesh, SynthRandom& look,
-                       const BinVariation& variation, RenderScene& scene, std::vector<BinPart>& parts, std::vector<Pose>& world_poses) {
+                       const BinVariation& variation, RenderScene& scene, std::vector<BinPart>& parts,
+                       std::vector<Pose>& world_poses) {
   std::vector<int> mesh_of_part(library.size(), -1);
   for (const RestingPart& resting : physics.parts) {
     if (mesh_of_part[resting.part] < 0) mesh_of_part[resting.part] = scene.add_mesh(library.part(resting.part).mesh);

@@ -11,13 +11,14 @@ namespace {
 
 using synth_detail::SynthRandom;
 
-// One random stream per aspect (bin_scene.cpp's streams are 0xB1..0xB4, + 0x100 per image).
+// One random stream per aspect, apart from bin_scene.cpp's (0xB1..0xB4, 0xC3 the shading
+// seed, 0xB4 + 0x100 per image for the noise).
 enum VaryStream : std::uint32_t {
-  kStreamMaterial = 0xC1,
-  kStreamLights = 0xC2,
-  kStreamProjector = 0xC3,
-  kStreamCamera = 0xC4,
-  kStreamOptics = 0xC5,
+  kStreamMaterial = 0xD1,
+  kStreamLights = 0xD2,
+  kStreamProjector = 0xD3,
+  kStreamCamera = 0xD4,
+  kStreamOptics = 0xD5,
 };
 
 const struct {
