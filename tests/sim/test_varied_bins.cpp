@@ -4,6 +4,7 @@
 // and gain say, and the same seed gives the same bytes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "host/io/physical_checks.h"
@@ -188,4 +189,55 @@ TEST(VariedBin, EveryAspectDrawnInItsRangeAndTheSameSeedGivesTheSameBytes) {
   const BinViews fixed = BinSimulator(plain, tless()).simulate(8, 1);
   EXPECT_EQ(fixed.variation.aspects, 0u);
   EXPECT_GT(cv::norm(fixed.im0, a.im0, cv::NORM_L1), 0.0);
+}
+
+TEST(VariedBin, MetalHighlightsDifferBetweenTheTwoViews) {
+  BinSimSettings settings = small_settings();
+  settings.vary = kVaryMaterial;
+  settings.noise_sigma = 0.0;
+  settings.min_parts = settings.max_parts = 10;
+  const BinSimulator simulator(settings, tless());
+  // A bin with metal and plastic parts.
+  std::int64_t index = 0;
+  BinViews views = simulator.simulate(21, index);
+  auto mixed = [](const BinViews& v) {
+    const auto& metal = v.variation.part_is_metal;
+    return std::count(metal.begin(), metal.end(), true) >= 2 && std::count(metal.begin(), metal.end(), false) >= 2;
+  };
+  while (!mixed(views) && index < 20) views = simulator.simulate(21, ++index);
+  ASSERT_TRUE(mixed(views));
+
+  // Left against right at the ground truth's pixel, per material, inside the parts' faces
+  // (away from depth edges, where interpolation differs): the 99th percentile of the grey
+  // difference (highlights are small; the rest of a part matches).
+  const auto smooth = [](const cv::Mat& disparity, int x, int y) {
+    if (x < 1 || y < 1 || x + 1 >= disparity.cols || y + 1 >= disparity.rows) return false;
+    const float d = disparity.at<float>(y, x);
+    for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      if (!(std::abs(disparity.at<float>(y + dy, x + dx) - d) < 0.3f)) return false;
+    }
+    return true;
+  };
+  std::vector<int> metal_differences, plastic_differences;
+  for (std::size_t i = 0; i < views.parts.size(); ++i) {
+    const cv::Mat& mask = views.left.parts[i].mask_visib;
+    for (int y = 0; y < mask.rows; ++y) {
+      for (int x = 0; x < mask.cols; ++x) {
+        if (mask.at<std::uint8_t>(y, x) == 0 || views.nocc0.at<std::uint8_t>(y, x) == 0) continue;
+        if (!smooth(views.disp0, x, y)) continue;
+        const int u = int(std::lround(x - views.disp0.at<float>(y, x)));
+        if (u < 0 || u >= views.im1.cols) continue;
+        const int a = views.im0_passive.at<cv::Vec3b>(y, x)[1], b = views.im1_passive.at<cv::Vec3b>(y, u)[1];
+        (views.variation.part_is_metal[i] ? metal_differences : plastic_differences).push_back(std::abs(a - b));
+      }
+    }
+  }
+  auto percentile_99 = [](std::vector<int> values) {
+    std::sort(values.begin(), values.end());
+    return values[values.size() * 99 / 100];
+  };
+  ASSERT_GT(metal_differences.size(), 100u);
+  ASSERT_GT(plastic_differences.size(), 100u);
+  EXPECT_GT(percentile_99(metal_differences), 2 * percentile_99(plastic_differences))
+      << percentile_99(metal_differences) << " vs " << percentile_99(plastic_differences);
 }
