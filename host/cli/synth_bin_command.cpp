@@ -3,6 +3,7 @@
 // folder per bin (host/sim/, docs/sim.md).
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -75,6 +76,12 @@ void print_help() {
          "  --size WxH            image size of both cameras (default 1280x960)\n"
          "  --volume XxYxZ        working volume, mm (default 600x400x400)\n"
          "  --bin LxWxH           bin: inner floor and wall height, mm (default 500x340x120)\n"
+         "  --pile sparse|dense   sparse: 10..20 parts in one wave; dense: 30..80 in waves of 10,\n"
+         "                        each settled before the next (default sparse)\n"
+         "  --vary LIST           draw per bin (recorded in sim_info.json): all, none, or a list of\n"
+         "                        material, lights, projector, camera, optics (default none)\n"
+         "  --noise-level LO..HI  with --vary camera: where the bins' shot and read noise fall in\n"
+         "                        the drawn range, 0 least .. 1 most (default 0..1)\n"
          "  --pattern-seed S      layout of the projector's dots (default 1)\n"
          "  --projector-power P   radiance of a dot (default 2.5)\n"
          "  --threads N           threads per bin (default: all; same bytes for any N)\n"
@@ -112,6 +119,20 @@ void set_parts_option(const std::string& parts_text, SynthBinOptions& options) {
   settings.max_parts = int(parse_whole_number("--parts", parts_text.substr(dots + 2), 1, 200));
 }
 
+// --noise-level LO..HI into the settings (checked by BinSimSettings::check).
+void set_noise_level(const std::string& text, BinSimSettings& settings) {
+  const std::size_t dots = text.find("..");
+  char* end = nullptr;
+  const std::string lo = dots == std::string::npos ? "" : text.substr(0, dots);
+  const std::string hi = dots == std::string::npos ? "" : text.substr(dots + 2);
+  settings.noise_level_min = std::strtod(lo.c_str(), &end);
+  const bool lo_ok = !lo.empty() && *end == 0;
+  settings.noise_level_max = std::strtod(hi.c_str(), &end);
+  if (!lo_ok || hi.empty() || *end != 0) {
+    throw InputError("option --noise-level", "expected LO..HI (e.g. 0..1), got '" + text + "'");
+  }
+}
+
 SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
   SynthBinOptions options;
   BinSimSettings& settings = options.settings;
@@ -124,6 +145,16 @@ SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
   const std::string parts_text = take_option(args, "--parts");
   const std::string pattern_seed_text = take_option(args, "--pattern-seed");
   const std::string threads_text = take_option(args, "--threads");
+  const std::string pile_text = take_option(args, "--pile");
+  const std::string vary_text = take_option(args, "--vary");
+  const std::string noise_level_text = take_option(args, "--noise-level");
+  // Before the options that may narrow the dense pile's part count.
+  if (pile_text == "dense") {
+    use_dense_pile(settings);
+  } else if (!pile_text.empty() && pile_text != "sparse") {
+    throw InputError("option --pile", "expected sparse or dense, got '" + pile_text + "'");
+  }
+
   const double power = take_number_option(args, "--projector-power", settings.projector.power);
   take_size_option(args, settings.rig.width, settings.rig.height);
   take_triple_option(args, "--volume", settings.rig.volume.width, settings.rig.volume.height,
@@ -145,6 +176,8 @@ SynthBinOptions parse_synth_bin_options(std::vector<std::string> args) {
   }
   if (!threads_text.empty()) settings.threads = int(parse_whole_number("--threads", threads_text, 0, 4096));
   if (parts_given) set_parts_option(parts_text, options);
+  if (!vary_text.empty()) settings.vary = parse_vary_list(vary_text);
+  if (!noise_level_text.empty()) set_noise_level(noise_level_text, settings);
   settings.projector.power = float(power);
   settings.check();
   return options;
@@ -188,7 +221,10 @@ void write_sim_info(const std::string& folder, const SynthBinOptions& options, c
                          {"pattern_seed", settings.projector.pattern_seed},
                          {"settings", settings_json(bin_setting_options(named), settings.rig.width,
                                                     settings.rig.height)}};
+  // Only when used: the default bins' files stay as they were.
   if (!options.part_ids.empty()) info["part_ids"] = options.part_ids;
+  if (settings.pile == BinPile::dense) info["pile"] = "dense";
+  if (settings.vary != 0) info["variation"] = variation_json(views.variation);
   write_atomically(folder + "/sim_info.json", [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << info.dump(2) << "\n";

@@ -77,7 +77,7 @@ class BinWorld {
 
   // Drops `part` above the walls and the pile, clear of both by a margin, at a random
   // point and orientation.
-  void drop(int part, synth_detail::SynthRandom& random) {
+  void drop(int part, synth_detail::SynthRandom& random, const Eigen::Vector2d& heap = Eigen::Vector2d::Zero()) {
     const PartHull& hull = hulls_[part];
     const double L = bin_.length_mm, W = bin_.width_mm;
     double top = bin_.wall_height_mm;
@@ -88,8 +88,18 @@ class BinWorld {
     }
     const double rx = std::max(0.0, 0.5 * L - hull.radius_mm);
     const double ry = std::max(0.0, 0.5 * W - hull.radius_mm);
-    const Eigen::Vector3d position(random.uniform(-rx, rx), random.uniform(-ry, ry),
-                                   top + hull.radius_mm + 20.0);
+    Eigen::Vector3d position;
+    if (settings_.heap_sigma_mm > 0.0) {
+      // Box-Muller around the heap's point, kept over the bin.
+      const double r = settings_.heap_sigma_mm * std::sqrt(-2.0 * std::log(1.0 - random.uniform()));
+      const double phi = 2.0 * M_PI * random.uniform();
+      position = {std::clamp(heap.x() + r * std::cos(phi), -rx, rx),
+                  std::clamp(heap.y() + r * std::sin(phi), -ry, ry), top + hull.radius_mm + 20.0};
+    } else {
+      // The constructor's arguments, as the sparse piles have always been drawn (their
+      // order of evaluation is the compiler's; braces would fix it and change the piles).
+      position = Eigen::Vector3d(random.uniform(-rx, rx), random.uniform(-ry, ry), top + hull.radius_mm + 20.0);
+    }
     const Eigen::Quaterniond rotation = random_rotation(random);
     btTransform transform;
     transform.setOrigin(to_bt(kMetresPerMm * position));
@@ -316,10 +326,18 @@ PhysicsResult drop_parts(const std::vector<PartHull>& hulls, const std::vector<i
   BinWorld world(hulls, bin, settings);
   PhysicsResult result;
   const int drop_steps = std::max(1, int(std::lround(settings.drop_interval_s / settings.time_step_s)));
+  const int wave_steps = int(std::lround(settings.wave_settle_s / settings.time_step_s));
+  Eigen::Vector2d heap = Eigen::Vector2d::Zero();
   for (int part : order) {
-    world.drop(part, random);
+    const bool wave_starts = settings.wave_size > 0 && result.dropped % settings.wave_size == 0;
+    if (wave_starts && settings.heap_sigma_mm > 0.0) {
+      heap = {random.uniform(-0.3, 0.3) * bin.length_mm, random.uniform(-0.3, 0.3) * bin.width_mm};
+    }
+    world.drop(part, random, heap);
     ++result.dropped;
     for (int s = 0; s < drop_steps; ++s) world.step();
+    const bool wave_done = settings.wave_size > 0 && result.dropped % settings.wave_size == 0;
+    if (wave_done && result.dropped < int(order.size())) world.settle(wave_steps);
   }
   // The parts still in the world, by drop index (a removed part's body is taken out).
   std::vector<bool> in_world(order.size(), true);

@@ -38,6 +38,14 @@ struct PhysicsSettings {
   // Simulated time after each drop before the next part falls (s): enough for it to land,
   // not to come to rest, so the pile settles while it grows.
   double drop_interval_s = 0.3;
+  // Dense piles fall in waves: after every wave_size parts the pile settles (at most
+  // wave_settle_s of simulated time) before the next wave, so that the next parts land
+  // on a pile at rest rather than on parts still sliding (0: one wave, the sparse pile).
+  int wave_size = 0;
+  double wave_settle_s = 1.5;
+  // A wave's parts fall around one point of the bin (Gaussian, this sigma in mm), as
+  // parts tipped from a box or a conveyor heap up; 0: anywhere over the bin.
+  double heap_sigma_mm = 0.0;
   // At rest: every part slower than these for rest_steps steps in a row; or max_settle_s
   // of simulated time after the last drop.
   double rest_linear_mm_s = 5.0, rest_angular_rad_s = 0.05;

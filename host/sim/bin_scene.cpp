@@ -7,6 +7,7 @@
 
 #include "host/dataset/gt_info.h"
 #include "host/render/shading.h"
+#include "host/sim/sensor_model.h"
 #include "host/synth/camera_effects.h"
 #include "host/synth/synth_random.h"
 
@@ -95,29 +96,23 @@ class Srgb8 {
   std::uint8_t table_[kSize];
 };
 
-// Room light in the bin frame (mm, z up): a broad ceiling light up and to the side of
-// the cameras, and a weaker one opposite, both with soft shadows.
-ShadingOptions room_lighting(const BinSimSettings& settings, const StereoRig& rig, bool right,
-                             std::uint32_t seed) {
-  const double ceiling = rig.t_cw.z() + 800.0;
+// Room light: the bin's lamps (bin frame, mm, z up) in the camera's frame, soft shadows.
+ShadingOptions room_lighting(const BinVariation& look, const StereoRig& rig, bool right,
+                             std::uint32_t seed, int threads) {
   const Eigen::Vector3d shift = right ? Eigen::Vector3d(rig.baseline_mm, 0, 0) : Eigen::Vector3d::Zero();
   ShadingOptions options;
   options.lights.clear();
-  const struct {
-    Eigen::Vector3d position;
-    double share;
-  } lamps[] = {{{-700.0, 500.0, ceiling}, 1.0}, {{900.0, -700.0, ceiling}, 0.4}};
-  for (const auto& lamp : lamps) {
+  for (const RoomLamp& lamp : look.lamps) {
     Light light;
     light.position = (rig.left_point(lamp.position) - shift).cast<float>();
-    light.intensity = Eigen::Vector3f::Constant(float(settings.room_light * lamp.share));
-    light.radius = 150.0f;
+    light.intensity = lamp.intensity;
+    light.radius = lamp.radius_mm;
     options.lights.push_back(light);
   }
-  options.ambient = float(settings.ambient);
+  options.ambient = float(look.ambient);
   options.shadow_samples = 8;
   options.seed = seed;
-  options.threads = settings.threads;
+  options.threads = threads;
   return options;
 }
 
@@ -127,8 +122,8 @@ struct View {
 };
 
 View render_view(RenderScene& scene, const std::vector<Pose>& world_poses, const StereoRig& rig,
-                 bool right, const BinSimulator& simulator, std::uint32_t seed) {
-  const BinSimSettings& settings = simulator.settings();
+                 bool right, const BinSimSettings& settings, const BinVariation& look,
+                 const DotPattern& pattern, std::uint32_t seed) {
   for (int i = 0; i < int(world_poses.size()); ++i) {
     scene.set_pose(i, right ? rig.to_right(world_poses[i]) : rig.to_left(world_poses[i]));
   }
@@ -138,28 +133,37 @@ View render_view(RenderScene& scene, const std::vector<Pose>& world_poses, const
   RaycastOptions cast;
   cast.threads = settings.threads;
   view.cast = raycast(scene, camera, cast);
-  view.passive = shade_linear(scene, view.cast, room_lighting(settings, rig, right, seed));
+  view.passive = shade_linear(scene, view.cast, room_lighting(look, rig, right, seed, settings.threads));
   Eigen::Vector3d projector = rig.projector_in_left();
   if (right) projector.x() -= rig.baseline_mm;
   view.active = view.passive +
-                projector_radiance(scene, view.cast, camera, projector, simulator.pattern(), settings.threads);
+                projector_radiance(scene, view.cast, camera, projector, pattern, settings.threads);
   return view;
 }
 
-cv::Mat to_8bit(const cv::Mat& radiance, double noise_sigma, std::uint64_t key) {
+// The camera: a varied bin's optics and sensor (sensor_model.h), else the fixed Gaussian
+// noise after the encoding.
+cv::Mat to_8bit(const cv::Mat& radiance, const BinVariation& look, int camera, double noise_sigma,
+                std::uint64_t key) {
   static const Srgb8 encode;
-  cv::Mat rgb = encode(radiance);
-  apply_camera_effects(rgb, 0.0, noise_sigma, key);
+  if ((look.aspects & (kVaryCamera | kVaryOptics)) == 0) {
+    cv::Mat rgb = encode(radiance);
+    apply_camera_effects(rgb, 0.0, noise_sigma, key);
+    return rgb;
+  }
+  cv::Mat rgb = encode(apply_camera_look(radiance, look.cameras[camera], key));
+  if ((look.aspects & kVaryCamera) == 0) apply_camera_effects(rgb, 0.0, noise_sigma, key);
   return rgb;
 }
 
 // The scene of a bin: the resting parts first (instance ids 0..n-1, the BOP gt ids), each
-// a grey drawn from `look`, then bin and table. `parts` gets the parts, `world_poses` the
-// world pose of every instance.
+// a grey drawn from `look` or the varied bin's material, then bin and table. `parts` gets
+// the parts, `world_poses` the world pose of every instance.
 void compose_bin_scene(const PhysicsResult& physics, const PartLibrary& library,
                        const std::shared_ptr<const Mesh>& bin_mesh,
                        const std::shared_ptr<const Mesh>& table_mesh, SynthRandom& look,
-                       RenderScene& scene, std::vector<BinPart>& parts, std::vector<Pose>& world_poses) {
+                       const BinVariation& variation, RenderScene& scene, std::vector<BinPart>& parts,
+                       std::vector<Pose>& world_poses) {
   std::vector<int> mesh_of_part(library.size(), -1);
   for (const RestingPart& resting : physics.parts) {
     if (mesh_of_part[resting.part] < 0) mesh_of_part[resting.part] = scene.add_mesh(library.part(resting.part).mesh);
@@ -167,10 +171,14 @@ void compose_bin_scene(const PhysicsResult& physics, const PartLibrary& library,
     part.part = resting.part;
     part.obj_id = library.part(resting.part).obj_id;
     part.world = resting.world;
-    // Dark to light grey plastic.
-    part.albedo = Eigen::Vector3f::Constant(float(look.uniform(0.12, 0.75)));
+    // Dark to light grey plastic, or the varied bin's material.
     Material material;
-    material.albedo = part.albedo;
+    if (variation.aspects & kVaryMaterial) {
+      material = variation.part_materials[parts.size()];
+    } else {
+      material.albedo = Eigen::Vector3f::Constant(float(look.uniform(0.12, 0.75)));
+    }
+    part.albedo = material.albedo;
     scene.add_instance(mesh_of_part[resting.part], Pose{}, material);
     world_poses.push_back(part.world);
     parts.push_back(part);
@@ -178,6 +186,7 @@ void compose_bin_scene(const PhysicsResult& physics, const PartLibrary& library,
   Material bin_material;
   bin_material.albedo = Eigen::Vector3f::Constant(0.45f);
   bin_material.specular = 0.1f;
+  if (variation.aspects & kVaryMaterial) bin_material = variation.bin_material;
   scene.add_instance(scene.add_mesh(bin_mesh), Pose{}, bin_material);
   world_poses.push_back(Pose{});
   Material table_material;
@@ -250,21 +259,38 @@ BinViews BinSimulator::simulate(std::uint32_t seed, std::int64_t index) const {
   const Clock::time_point physics_done = Clock::now();
   views.physics_ms = std::chrono::duration<double, std::milli>(physics_done - start).count();
 
+  // How this bin looks: the settings', or drawn per bin (bin_variation.h).
+  views.variation = draw_bin_variation(settings_, rig_.t_cw.z() + 800.0, seed, index,
+                                       int(views.physics.parts.size()));
+  const BinVariation& variation = views.variation;
+  std::unique_ptr<DotPattern> varied_pattern;
+  if (variation.aspects & kVaryProjector) {
+    ProjectorSettings projector = settings_.projector;
+    projector.power = float(variation.projector_power);
+    projector.dot_sigma_degrees = variation.dot_sigma_degrees;
+    projector.blur_sigma_degrees = variation.dot_blur_degrees;
+    varied_pattern = std::make_unique<DotPattern>(projector);
+  }
+  const DotPattern& pattern = varied_pattern ? *varied_pattern : *pattern_;
+
   // The scene: parts first (instance ids 0..n-1, the BOP gt ids), then bin and table.
   SynthRandom look(seed, index, kStreamLook);
   RenderScene scene;
   std::vector<Pose> world_poses;
-  compose_bin_scene(views.physics, parts_, bin_mesh_, table_mesh_, look, scene, views.parts, world_poses);
+  compose_bin_scene(views.physics, parts_, bin_mesh_, table_mesh_, look, variation, scene, views.parts,
+                    world_poses);
 
   const std::uint32_t shading_seed = static_cast<std::uint32_t>(SynthRandom(seed, index, kStreamLook + 0x10).next_u64());
-  const View right = render_view(scene, world_poses, rig_, true, *this, shading_seed);
-  const View left = render_view(scene, world_poses, rig_, false, *this, shading_seed);  // scene left at the left poses
+  const View right = render_view(scene, world_poses, rig_, true, settings_, variation, pattern, shading_seed);
+  const View left = render_view(scene, world_poses, rig_, false, settings_, variation, pattern,
+                                shading_seed);  // scene left at the left poses
 
   const auto noise_key = [&](int image) { return SynthRandom(seed, index, kStreamNoise + 0x100 * image).next_u64(); };
-  views.im0 = to_8bit(left.active, settings_.noise_sigma, noise_key(0));
-  views.im1 = to_8bit(right.active, settings_.noise_sigma, noise_key(1));
-  views.im0_passive = to_8bit(left.passive, settings_.noise_sigma, noise_key(2));
-  views.im1_passive = to_8bit(right.passive, settings_.noise_sigma, noise_key(3));
+  const double sigma = settings_.noise_sigma;
+  views.im0 = to_8bit(left.active, variation, 0, sigma, noise_key(0));
+  views.im1 = to_8bit(right.active, variation, 1, sigma, noise_key(1));
+  views.im0_passive = to_8bit(left.passive, variation, 0, sigma, noise_key(2));
+  views.im1_passive = to_8bit(right.passive, variation, 1, sigma, noise_key(3));
   views.disp0 = disparity_from_depth(rig_, left.cast.depth);
   views.disp1 = disparity_from_depth(rig_, right.cast.depth);
   views.nocc0 = nonoccluded_left(rig_, left.cast.depth, left.cast.instance, right.cast.depth,

@@ -10,6 +10,7 @@
 
 #include "host/dataset/annotated_image.h"
 #include "host/sim/bin_settings.h"
+#include "host/sim/bin_variation.h"
 #include "host/synth/part_library.h"
 
 namespace flexsight {
@@ -32,6 +33,8 @@ struct BinViews {
   cv::Mat nocc0;
   // The left view as a BOP image: rgb = im0_passive, depth, K, poses, masks, gt info.
   AnnotatedImage left;
+  // How the bin looks: the settings' fixed values, or those drawn for it (--vary).
+  BinVariation variation;
   double physics_ms = 0.0, render_ms = 0.0;
 };
 

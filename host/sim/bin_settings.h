@@ -8,6 +8,21 @@
 
 namespace flexsight {
 
+// What a bin's randomisation may change (`--vary`, bin_variation.h); bits of
+// BinSimSettings::vary.
+enum BinVaryAspect : unsigned {
+  kVaryMaterial = 1,   // each part from matte grey plastic to shiny metal; the bin's grey
+  kVaryLights = 2,     // number, position, colour, size and strength of the room lights
+  kVaryProjector = 4,  // projector power, dot size and blur
+  kVaryCamera = 8,     // exposure and gain per camera, shot and read noise
+  kVaryOptics = 16,    // vignetting and a slight defocus per camera
+  kVaryAll = 31,
+};
+
+// How the parts are dropped: one wave of 10..20 (sparse, a layer with a few parts on
+// others), or 30..80 in waves of 10 that settle in turn (dense, several layers).
+enum class BinPile { sparse, dense };
+
 struct BinSimSettings {
   StereoRigSettings rig;
   BinGeometry bin;
@@ -18,6 +33,13 @@ struct BinSimSettings {
   double noise_sigma = 1.5;
   // Room light: strength of the ceiling light and of the ambient term (shading.h).
   double room_light = 0.5, ambient = 0.12;
+  BinPile pile = BinPile::sparse;
+  // BinVaryAspect bits drawn per bin from (seed, bin index); 0 keeps every bin's look
+  // fixed by the options above.
+  unsigned vary = 0;
+  // Where in the drawn ranges of shot and read noise a bin may fall (0: the least, 1:
+  // the most; bin_variation.h); used with kVaryCamera.
+  double noise_level_min = 0.0, noise_level_max = 1.0;
   // OpenMP threads for ray casting, shading and the projector (0: all). The bytes do not
   // depend on it.
   int threads = 0;
@@ -27,5 +49,8 @@ struct BinSimSettings {
   // parts outside 1..200 or min > max, the projector's checks, a negative noise or light.
   void check() const;
 };
+
+// `--pile dense`: 30..80 parts in waves of 10, each wave settled before the next.
+void use_dense_pile(BinSimSettings& settings);
 
 }  // namespace flexsight

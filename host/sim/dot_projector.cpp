@@ -86,6 +86,7 @@ cv::Mat projector_radiance(const RenderScene& scene, const RaycastImages& images
   const RTCScene embree = scene.embree_scene();
   const int rows = images.depth.rows, cols = images.depth.cols;
   const int thread_count = threads > 0 ? threads : omp_get_max_threads();
+  const double blur = settings.blur_sigma_degrees * kDegrees;
   // Rows are independent: any split gives the same bytes.
 #pragma omp parallel for schedule(dynamic, 8) num_threads(thread_count)
   for (int y = 0; y < rows; ++y) {
@@ -102,9 +103,10 @@ cv::Mat projector_radiance(const RenderScene& scene, const RaycastImages& images
       if (cosine <= 0.0) continue;
       // The pixel's width on a surface facing the camera, as an angle at the projector.
       const double footprint = point.z() / camera.fx / distance;
+      const double extra = blur > 0.0 ? std::sqrt(footprint * footprint / 12.0 + blur * blur)
+                                      : footprint / std::sqrt(12.0);
       const double value = pattern.intensity(
-          Eigen::Vector2d(std::atan(q.x() / q.z()), std::atan(q.y() / q.z())),
-          footprint / std::sqrt(12.0));
+          Eigen::Vector2d(std::atan(q.x() / q.z()), std::atan(q.y() / q.z())), extra);
       if (value < kDarkEnough) continue;
       // Shadow ray from the surface (moved off it along the geometric normal) to the
       // projector.

@@ -31,6 +31,9 @@ struct ProjectorSettings {
   double fov_degrees = 35.0;       // square field, both axes
   std::uint32_t pattern_seed = 1;  // the layout of the dots
   double dot_sigma_degrees = 0.035;  // Gaussian radius of a dot (1.5 px at 1280x960)
+  // Optical blur of every dot (Gaussian sigma, degrees), added to the pixel's footprint:
+  // a dot keeps its light and spreads it (varied bins, bin_variation.h).
+  double blur_sigma_degrees = 0.0;
   float power = 2.5f;  // radiance of a dot's centre on a white surface facing it
   Eigen::Vector3f colour{1.0f, 0.08f, 0.04f};  // red laser as an RGB camera sees it
   // Throws InputError naming the option (--dots, --projector-fov, --dot-size) for a

@@ -240,6 +240,9 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"synth bin --count 1 --baseline -1 -o " + d + "bins_out", "--baseline"},
       {"synth bin --count 1 --bin 600x400x100 -o " + d + "bins_out", "--bin"},
       {"synth bin --count 1 --cad " + d + "nowhere -o " + d + "bins_out", d + "nowhere"},
+      {"synth bin --count 1 --pile heap -o " + d + "bins_out", "--pile"},
+      {"synth bin --count 1 --vary shiny -o " + d + "bins_out", "--vary"},
+      {"synth bin --count 1 --noise-level 0..3 -o " + d + "bins_out", "--noise-level"},
       // detection
       {"detect " + d + "nope.png -o " + d + "existing.json", d + "nope.png"},
       {"detect " + d + "left.png --model " + d + "junk.onnx -o " + d + "existing.json", d + "junk.onnx"},

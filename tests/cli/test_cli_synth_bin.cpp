@@ -122,3 +122,29 @@ TEST_F(SynthBin, ExistingBinsAreKeptWithoutOverwrite) {
   ASSERT_EQ(run_flexsight(small("9") + " --overwrite -o " + out.string(), dir_).exit_code, 0);
   EXPECT_NE(folder_bytes(out), before);
 }
+
+TEST_F(SynthBin, PileAndVaryOptionsOutOfRangeNameTheOptionAndWriteNothing) {
+  expect_rejected(small() + " --pile heap", "--pile");
+  expect_rejected(small() + " --pile", "--pile");
+  expect_rejected(small() + " --vary shiny", "--vary");
+  expect_rejected(small() + " --vary material,,lights", "--vary");
+  expect_rejected(small() + " --vary material,", "--vary");
+  expect_rejected(small() + " --noise-level 0.5..0.2", "--noise-level");
+  expect_rejected(small() + " --noise-level 0..2", "--noise-level");
+  expect_rejected(small() + " --noise-level loud", "--noise-level");
+}
+
+TEST_F(SynthBin, VariedBinsRecordTheirDrawsAndRepeatByteForByte) {
+  const std::string varied = small("4") + " --vary all";
+  ASSERT_EQ(run_flexsight(varied + " --threads 1 -o " + (dir_ / "a").string(), dir_).exit_code, 0);
+  ASSERT_EQ(run_flexsight(varied + " --threads 3 -o " + (dir_ / "b").string(), dir_).exit_code, 0);
+  ASSERT_EQ(run_flexsight(small("4") + " -o " + (dir_ / "c").string(), dir_).exit_code, 0);
+  EXPECT_TRUE(same_folders(dir_ / "a", dir_ / "b"));
+  EXPECT_FALSE(same_folders(dir_ / "a", dir_ / "c"));
+  const std::string info = slurp(dir_ / "a" / "bin000" / "sim_info.json");
+  for (const char* key : {"\"variation\"", "\"metal_share\"", "\"lamps\"", "\"dot_blur_degrees\"", "\"gain\"",
+                          "\"vignetting\"", "\"noise_level\""}) {
+    EXPECT_NE(info.find(key), std::string::npos) << key;
+  }
+  EXPECT_EQ(slurp(dir_ / "c" / "bin000" / "sim_info.json").find("variation"), std::string::npos);
+}

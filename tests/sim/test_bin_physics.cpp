@@ -1,6 +1,5 @@
 // Parts dropped into the bin come to rest inside it: above the floor, within the walls,
 // and not inside one another (checked with Embree, independently of Bullet's shapes).
-#include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +7,7 @@
 #include "host/render/mesh.h"
 #include "host/render/raycaster.h"
 #include "host/sim/bin_physics.h"
+#include "tests/sim/pile_checks.h"
 
 using namespace flexsight;
 
@@ -21,37 +21,6 @@ std::vector<std::shared_ptr<const Mesh>> some_tless_parts() {
     meshes.push_back(std::make_shared<const Mesh>(load_mesh(path)));
   }
   return meshes;
-}
-
-// Whether model point `p` (in the mesh's own frame) is inside the closed mesh: the
-// number of surfaces a ray along +z crosses is odd.
-bool inside(RTCScene mesh_scene, const Eigen::Vector3f& p) {
-  int crossings = 0;
-  float tnear = 0.0f;
-  for (int guard = 0; guard < 64; ++guard) {
-    RTCRayHit hit;
-    hit.ray.org_x = p.x();
-    hit.ray.org_y = p.y();
-    hit.ray.org_z = p.z();
-    hit.ray.dir_x = 0.0123f;  // off-axis: no ray along a facet edge of an axis-aligned part
-    hit.ray.dir_y = 0.0171f;
-    hit.ray.dir_z = 1.0f;
-    hit.ray.tnear = tnear;
-    hit.ray.tfar = INFINITY;
-    hit.ray.time = 0.0f;
-    hit.ray.mask = 0xFFFFFFFF;
-    hit.ray.id = 0;
-    hit.ray.flags = 0;
-    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(mesh_scene, &context, &hit);
-    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
-    ++crossings;
-    tnear = hit.ray.tfar + 1e-3f;
-  }
-  return crossings % 2 == 1;
 }
 
 }  // namespace
@@ -85,8 +54,6 @@ TEST(BinPhysics, PartsComeToRestInsideTheBinWithoutInterpenetrating) {
   ASSERT_GE(result.parts.size(), 10u) << result.removed << " removed";
 
   // Every vertex above the floor and within the walls (1.5 mm: Bullet's margins).
-  RenderScene scene;
-  for (const auto& mesh : meshes) scene.add_mesh(mesh);
   double highest = 0.0;
   for (const RestingPart& part : result.parts) {
     for (const Eigen::Vector3f& p : meshes[part.part]->positions) {
@@ -100,29 +67,9 @@ TEST(BinPhysics, PartsComeToRestInsideTheBinWithoutInterpenetrating) {
   // A pile, not a single layer: 12 parts on 200 x 150 mm stack up.
   EXPECT_GT(highest, 35.0);
 
-  // No part inside another: of each part's vertices, almost none lie inside any other
-  // part (a vertex touching a neighbour's surface may count either way).
-  int inside_count = 0, tested = 0;
-  for (std::size_t i = 0; i < result.parts.size(); ++i) {
-    const RestingPart& a = result.parts[i];
-    for (std::size_t j = 0; j < result.parts.size(); ++j) {
-      if (i == j) continue;
-      const RestingPart& b = result.parts[j];
-      const RTCScene b_scene = scene.embree_mesh_scene(b.part);
-      const auto& positions = meshes[a.part]->positions;
-      for (std::size_t k = 0; k < positions.size(); k += std::max<std::size_t>(1, positions.size() / 150)) {
-        const Eigen::Vector3d w = a.world.R * positions[k].cast<double>() + a.world.t;
-        const Eigen::Vector3d in_b = b.world.R.transpose() * (w - b.world.t);
-        // Quick reject by b's box.
-        if (!meshes[b.part]->bounds.cast<double>().contains(in_b)) {
-          ++tested;
-          continue;
-        }
-        ++tested;
-        if (inside(b_scene, in_b.cast<float>())) ++inside_count;
-      }
-    }
-  }
+  // No part inside another (pile_checks.h).
+  int tested = 0;
+  const int inside_count = pile_checks::vertices_inside_other_parts(meshes, result.parts, tested);
   EXPECT_LT(inside_count, std::max(3, tested / 500)) << inside_count << " of " << tested;
 }
 
