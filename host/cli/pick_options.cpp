@@ -10,6 +10,7 @@
 #include "host/io/input_error.h"
 #include "host/dataset/detection_data.h"
 #include "host/detect/known_parts.h"
+#include "host/pose/edge_thresholds.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -41,6 +42,8 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const std::string classes = take_option(args, "--classes-per-box");
   const std::string downscale = take_option(args, "--stereo-downscale");
   const std::string half_turns = take_option(args, "--half-turns");
+  const std::string edges = take_option(args, "--edges");
+  if (!edges.empty()) settings.pose.dcd.thresholds = edge_thresholds_named(edges, "--edges");
   const double retry_below = take_number_option(args, "--retry-below", settings.pose.retry_below_score);
   settings.quiet = take_flag(args, "--quiet");
   if (!(score >= 0.0 && score <= 1.0)) throw InputError("option --score", "must lie in [0, 1]");
@@ -93,6 +96,9 @@ std::string pick_options_help() {
           "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
           "                     the matcher's time falls with N squared; detection and\n"
           "                     pose keep the full image\n"
+          "  --edges E          pose edge thresholds: contrast+noise (default: each box's\n"
+          "                     grey levels stretched, thresholds above its noise),\n"
+          "                     fixed, contrast or noise (docs/pose.md)\n"
           "  --half-turns on|off  also fit each candidate pose turned 180 degrees about\n"
           "                     the part's axes (default on; off: a quarter of the ICP runs)\n"
           "  --retry-below S    when the best candidates of a box score below S, fit every\n"

@@ -23,6 +23,7 @@
 #include "host/io/staged_folder.h"
 #include "host/pose/dataset_posing.h"
 #include "host/dataset/detection_data.h"
+#include "host/pose/edge_thresholds.h"
 #include "host/pose/pose_models.h"
 
 namespace flexsight {
@@ -60,7 +61,7 @@ void print_help() {
          "  --edges E          how the edge thresholds meet the image: fixed (grey\n"
          "                     levels as they are), contrast (the box's grey levels\n"
          "                     stretched first), noise (kept above the box's\n"
-         "                     gradient noise) or contrast+noise (the default;\n"
+         "                     gradient noise) or contrast+noise (default fixed;\n"
          "                     docs/pose.md)\n"
          "  --threads N        images posed at once (default: all cores)\n"
          "  --overwrite        replace DIR when it is not empty\n";
@@ -74,13 +75,7 @@ PoseRefinement parse_refinement(const std::string& text) {
 }
 
 DcdParams::EdgeThresholds parse_edges(const std::string& text, DcdParams::EdgeThresholds default_value) {
-  using E = DcdParams::EdgeThresholds;
-  if (text.empty()) return default_value;
-  if (text == "fixed") return E::kFixed;
-  if (text == "contrast") return E::kContrast;
-  if (text == "noise") return E::kNoise;
-  if (text == "contrast+noise") return E::kContrastAndNoise;
-  throw InputError("option --edges", "expected fixed, contrast, noise or contrast+noise, got '" + text + "'");
+  return text.empty() ? default_value : edge_thresholds_named(text, "--edges");
 }
 
 int run_dataset_form(const std::string& dataset, std::vector<std::string>& args) {

@@ -20,12 +20,20 @@
 
 namespace flexsight {
 
+inline PoseEstimatorParams bin_pose_params() {
+  PoseEstimatorParams params;
+  params.dcd.thresholds = DcdParams::EdgeThresholds::kContrastAndNoise;
+  return params;
+}
+
 struct PickSettings {
   StereoParams stereo;
   BackendOptions backend;
   // detector.parts: known-part mode (host/detect/known_parts.h), only those detected and posed.
   SsdDetectorOptions detector;
-  PoseEstimatorParams pose;
+  // A bin's parts lie on its dark, uniform floor, where edge thresholds brought to each
+  // box's contrast and noise pose more parts right (docs/pose.md, "Edges under noise").
+  PoseEstimatorParams pose = bin_pose_params();
   std::string model;      // the detector (resolved path)
   std::string templates;  // flexsight pose-templates' file
   std::string cad;        // the CAD folder the templates were made from

@@ -23,14 +23,15 @@ struct DcdParams {
   double canny_low = 40.0, canny_high = 100.0;
   // Sigma in pixels of the Gaussian blur before Canny (0 = none).
   double blur_sigma = 1.0;
-  // How the Canny thresholds meet the image (edge_thresholds.h; docs/pose.md says why
-  // both is the default): kFixed applies
+  // How the Canny thresholds meet the image (edge_thresholds.h; docs/pose.md has the
+  // measurements: pick uses kContrastAndNoise, for a bin's dark uniform floor, and the
+  // default stays kFixed, better on parts over photographs): kFixed applies
   // canny_low/high to the grey levels as they are; kContrast first stretches the region's
   // grey levels (2nd to 98th percentile onto 0..255), so that exposure and gain do not
   // move the edges; kNoise raises the thresholds above the region's measured gradient
   // noise; kContrastAndNoise does both.
   enum class EdgeThresholds { kFixed, kContrast, kNoise, kContrastAndNoise };
-  EdgeThresholds thresholds = EdgeThresholds::kContrastAndNoise;
+  EdgeThresholds thresholds = EdgeThresholds::kFixed;
   // Throws InputError naming the field for a value out of range or not finite.
   void check() const;
 };

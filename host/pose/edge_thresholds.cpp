@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "host/io/input_error.h"
+
 namespace flexsight {
 namespace {
 
@@ -58,6 +60,15 @@ CannyThresholds above_gradient_noise(CannyThresholds thresholds, const cv::Mat& 
   thresholds.high = std::max(thresholds.high, 4.0 * sigma);
   thresholds.low = std::max(thresholds.low, 2.0 * sigma);
   return thresholds;
+}
+
+DcdParams::EdgeThresholds edge_thresholds_named(const std::string& name, const std::string& option) {
+  using E = DcdParams::EdgeThresholds;
+  if (name == "fixed") return E::kFixed;
+  if (name == "contrast") return E::kContrast;
+  if (name == "noise") return E::kNoise;
+  if (name == "contrast+noise") return E::kContrastAndNoise;
+  throw InputError("option " + option, "expected fixed, contrast, noise or contrast+noise, got '" + name + "'");
 }
 
 }  // namespace flexsight

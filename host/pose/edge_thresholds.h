@@ -6,6 +6,9 @@
 // above the image's own gradient noise. docs/pose.md ("Edges under noise and gain") has
 // the measurements behind them.
 #include <opencv2/core.hpp>
+#include <string>
+
+#include "host/pose/dcd_tensor.h"
 
 namespace flexsight {
 
@@ -26,5 +29,9 @@ void stretch_contrast(cv::Mat& grey);
 // high >= 4 sigma keeps edges from starting in noise and low >= 2 sigma keeps them from
 // running along it.
 CannyThresholds above_gradient_noise(CannyThresholds thresholds, const cv::Mat& dx, const cv::Mat& dy);
+
+// The mode of a command line's `--edges` value: fixed, contrast, noise or contrast+noise;
+// InputError naming `option` for anything else.
+DcdParams::EdgeThresholds edge_thresholds_named(const std::string& name, const std::string& option);
 
 }  // namespace flexsight

@@ -34,11 +34,7 @@ TEST(DcdRefiner, ConvergesFromPosesTenDegreesAndTenMillimetresOff) {
   scene.add_instance(scene.add_mesh(mesh), truth);
   scene.commit();
   const cv::Mat image = picture(raycast(scene, camera));
-  // The refiner on the clean edges of the whole frame: the contrast stretch is meant for
-  // a part's box, where the part is a good share of the pixels; here it is 3 % of them,
-  // and the stretch would saturate its brighter facets and their crease edges.
   DcdParams dcd;
-  dcd.thresholds = DcdParams::EdgeThresholds::kFixed;
   const DcdTensor tensor(detect_edges(image, cv::Rect(0, 0, 640, 480), dcd), dcd);
 
   // The view whose camera direction is nearest the true one (the in-plane turn does not
