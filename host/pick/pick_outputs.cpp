@@ -32,6 +32,7 @@ Json depth_proposals_json(const DepthProposals& depth, double seconds) {
     regions.push_back({{"box", {r.box.x, r.box.y, r.box.width, r.box.height}},
                        {"score", r.score},
                        {"extent_mm", r.extent_mm},
+                       {"area_mm2", r.area_mm2},
                        {"depth_mm", r.depth_mm},
                        {"matched", static_cast<bool>(depth.matched[i])}});
   }

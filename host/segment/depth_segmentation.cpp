@@ -132,6 +132,7 @@ void DepthSegmentationOptions::check() const {
     throw InputError("depth segmentation", "needs the parts' smallest and largest diameters");
   }
   if (!(min_extent > 0.0 && max_extent >= min_extent)) throw InputError("depth segmentation", "bad extent bounds");
+  if (!(min_area >= 0.0)) throw InputError("depth segmentation", "min area must not be negative");
   if (!(nested_share > 0.0 && nested_share <= 1.0)) throw InputError("depth segmentation", "nested share must lie in (0, 1]");
 }
 
@@ -157,6 +158,10 @@ DepthSegmentation segment_depth(const cv::Mat& depth_mm, const PinholeCamera& ca
     region.depth_mm = r.depths[r.depths.size() / 2];
     region.extent_mm = std::hypot(r.box.width, r.box.height) * region.depth_mm / camera.fx;
     region.score = static_cast<double>(region.pixels) / r.box.area();
+    const double pixel_mm = region.depth_mm / camera.fx;
+    region.area_mm2 = region.pixels * pixel_mm * pixel_mm;
+    const double min_side = options.min_area * options.smallest_part_mm;
+    if (region.area_mm2 < min_side * min_side) continue;
     if (region.extent_mm < options.min_extent * options.smallest_part_mm) continue;
     if (region.extent_mm > options.max_extent * options.largest_part_mm) continue;
     if (is_wall(r.points, result.floor, region.extent_mm, options)) continue;

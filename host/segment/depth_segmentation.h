@@ -27,6 +27,10 @@ struct DepthSegmentationOptions {
   double largest_part_mm = 0.0;
   double min_extent = 0.5;
   double max_extent = 1.2;
+  // ... and its area (pixels at its median depth, mm^2) at least (min_area x smallest)^2:
+  // the slivers stereo leaves along the bin's walls and the parts' shadows have a long
+  // box but few pixels.
+  double min_area = 0.5;
   // A region whose points lie on a plane (thickness below this share of its extent)
   // tilted more than wall_tilt_deg from the floor is a bin wall.
   double wall_flatness = 0.05;
@@ -44,6 +48,7 @@ struct DepthRegion {
   int pixels = 0;
   double depth_mm = 0.0;  // median
   double extent_mm = 0.0; // the box's diagonal at that depth
+  double area_mm2 = 0.0;  // its pixels at that depth
   // pixels / box area: a compact region (one part) scores near 1 for boxy parts, a
   // thin sliver or a ring low.
   double score = 0.0;
