@@ -9,6 +9,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/pick_options.h"
 #include "host/dataset/dataset_files.h"
+#include "host/eval/pick_box_recall.h"
 #include "host/eval/pick_evaluation.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
@@ -35,7 +36,9 @@ void print_help() {
                "per bin with im0.png, im1.png, their passive twins, calib.txt, disp0GT.pfm,\n"
                "mask0nocc.png and the BOP ground truth) and scores it: DIR/report.json and\n"
                "DIR/report.md (pose recall, top-ranked part, detection mAP, stereo bad-2 with and\n"
-               "without the pattern, seconds per stage), DIR/BIN.json and DIR/BIN.png per bin.\n"
+               "without the pattern, seconds per stage), DIR/BIN.json and DIR/BIN.png per bin;\n"
+               "with --depth-proposals on also DIR/box_recall.json (parts >= 50 % visible with a\n"
+               "box of any class at IoU 0.5: detector, depth, both) and DIR/BIN_regions.png.\n"
                "  --out DIR          the report folder (must not exist, or be empty, unless\n"
                "                     --overwrite)\n"
                "  --overwrite        replace DIR\n"
@@ -62,6 +65,10 @@ void write_bin_outputs(const fs::path& stem, const BinPickRun& run, const BinFil
   cv::Mat picture;
   cv::cvtColor(pick_picture(run.left_view, run.result, session.models()), picture, cv::COLOR_BGR2RGB);
   write_image(stem.string() + ".png", picture);
+  if (run.result.depth_proposals_run) {
+    cv::cvtColor(depth_regions_picture(run.left_view, run.result.depth), picture, cv::COLOR_BGR2RGB);
+    write_image(stem.string() + "_regions.png", picture);
+  }
 }
 
 }  // namespace
@@ -108,6 +115,7 @@ int run_eval_pick_command(std::vector<std::string> args) {
   const PoseScoringModels models =
       load_pick_scoring_models(bin_truth_sources(bin_paths), settings, session, models_info);
 
+  std::vector<BoxRecall> box_recalls;  // with --depth-proposals on
   for (std::size_t i = 0; i < bins.size(); ++i) {
     const BinFiles& files = bins[i];
     const std::string name = bin_dirs[i].filename().string();
@@ -117,12 +125,14 @@ int run_eval_pick_command(std::vector<std::string> args) {
     if (report.stereo_path.empty()) report.stereo_path = run.result.stereo_path;
     report.bins.push_back(run.score);
     print_bin_score(run.score);
+    if (run.result.depth_proposals_run) box_recalls.push_back(score_box_recall(bin_paths[i], run.result));
     write_bin_outputs(fs::path(staged.path()) / name, run, files, settings, session);
   }
   summarize(report);
   const fs::path dir(staged.path());
   dataset_files::write_text((dir / "report.json").string(), to_json(report));
   dataset_files::write_text((dir / "report.md").string(), to_markdown(report));
+  if (!box_recalls.empty()) dataset_files::write_text((dir / "box_recall.json").string(), box_recall_json(box_recalls));
   staged.commit();
   std::cout << to_markdown(report);
   return 0;

@@ -44,6 +44,7 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const std::string half_turns = take_option(args, "--half-turns");
   const std::string edges = take_option(args, "--edges");
   if (!edges.empty()) settings.pose.dcd.thresholds = edge_thresholds_named(edges, "--edges");
+  const std::string depth_proposals = take_option(args, "--depth-proposals");
   const double retry_below = take_number_option(args, "--retry-below", settings.pose.retry_below_score);
   settings.quiet = take_flag(args, "--quiet");
   if (!(score >= 0.0 && score <= 1.0)) throw InputError("option --score", "must lie in [0, 1]");
@@ -58,6 +59,10 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   if (!half_turns.empty()) {
     if (half_turns != "on" && half_turns != "off") throw InputError("option --half-turns", "must be on or off");
     settings.pose.try_half_turns = half_turns == "on";
+  }
+  if (!depth_proposals.empty()) {
+    if (depth_proposals != "on" && depth_proposals != "off") throw InputError("option --depth-proposals", "must be on or off");
+    settings.depth_proposals = depth_proposals == "on";
   }
   if (!(retry_below >= 0.0 && retry_below <= 1.0)) throw InputError("option --retry-below", "must lie in [0, 1]");
   settings.pose.retry_below_score = retry_below;
@@ -103,6 +108,8 @@ std::string pick_options_help() {
           "                     the part's axes (default on; off: a quarter of the ICP runs)\n"
           "  --retry-below S    when the best candidates of a box score below S, fit every\n"
           "                     other candidate too (default 0.5; 0: never)\n"
+          "  --depth-proposals on|off  also pose the parts segmented from the depth above\n"
+          "                     the bin floor that no detector box matches (default off)\n"
           "  --threads N        parts posed at once (default: all cores)\n"
           "  --quiet            no progress lines\n"
           "  --ndisp N and the stereo parameters of flexsight stereo; --preset active (for\n"

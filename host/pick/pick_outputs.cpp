@@ -24,6 +24,29 @@ std::pair<Json, Json> pose_json(const Pose& pose) {
   return {R, t};
 }
 
+// The depth segmentation's floor, regions and proposals (when pick ran it).
+Json depth_proposals_json(const DepthProposals& depth, double seconds) {
+  Json regions = Json::array();
+  for (std::size_t i = 0; i < depth.segmentation.regions.size(); ++i) {
+    const DepthRegion& r = depth.segmentation.regions[i];
+    regions.push_back({{"box", {r.box.x, r.box.y, r.box.width, r.box.height}},
+                       {"score", r.score},
+                       {"extent_mm", r.extent_mm},
+                       {"area_mm2", r.area_mm2},
+                       {"depth_mm", r.depth_mm},
+                       {"matched", static_cast<bool>(depth.matched[i])}});
+  }
+  const FloorPlane& floor = depth.segmentation.floor;
+  return {{"floor", {{"found", floor.found},
+                     {"normal", {floor.normal.x(), floor.normal.y(), floor.normal.z()}},
+                     {"offset_mm", floor.offset},
+                     {"inlier_share", floor.inlier_share}}},
+          {"regions_above_floor", depth.segmentation.region_count},
+          {"regions", regions},
+          {"proposals", depth.boxes.size()},
+          {"seconds", seconds}};
+}
+
 }  // namespace
 
 std::string pick_json(const PickResult& result, const PickInputsDescription& inputs) {
@@ -44,6 +67,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                      {"pose_ms", {{"edges", c.times.edges_ms}, {"search", c.times.search_ms},
                                   {"refine", c.times.refine_ms}, {"icp", c.times.icp_ms},
                                   {"score", c.times.score_ms}}}});
+    if (result.depth_proposals_run) picks.back()["source"] = c.from_depth ? "depth" : "network";
   }
   Json proposals = Json::array();
   for (const PickCandidate& c : result.proposals) {
@@ -55,6 +79,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                          {"box", {c.box.x, c.box.y, c.box.width, c.box.height}},
                          {"R", R},
                          {"t_mm", t}});
+    if (result.depth_proposals_run) proposals.back()["source"] = c.from_depth ? "depth" : "network";
   }
   const PickStageSeconds& s = result.seconds;
   Json document = {
@@ -74,6 +99,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                    {"ranking", s.ranking}, {"total", s.total()}}},
       {"picks", picks},
       {"proposals", proposals}};
+  if (result.depth_proposals_run) document["depth_proposals"] = depth_proposals_json(result.depth, s.segmentation);
   return document.dump(1) + "\n";
 }
 

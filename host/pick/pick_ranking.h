@@ -26,6 +26,7 @@ struct PickCandidate {
   double height_mm = 0.0;        // of the part's origin above the bin floor (the
                                  // deepest surface in view), along the optical axis
   double pick_score = 0.0;       // pose_score x visible_fraction: the ranking key
+  bool from_depth = false;       // the box is a depth region's (depth_proposals.h)
   PoseStageTimes times;
 };
 

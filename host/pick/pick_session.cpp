@@ -51,7 +51,12 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
 std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
                                            const PickSettings& settings) {
   const cv::Rect image_rect(cv::Point(), bgr.size());
-  const std::vector<int> proposals = pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou);
+  std::vector<ObjectDetection> proposals;
+  for (int i : pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou)) {
+    proposals.push_back(result.detections[i]);
+  }
+  const std::size_t network_proposals = proposals.size();
+  proposals.insert(proposals.end(), result.depth.boxes.begin(), result.depth.boxes.end());
   std::vector<PickCandidate> candidates(proposals.size());
   std::vector<bool> posed(proposals.size(), false);
   std::exception_ptr failure;
@@ -62,7 +67,7 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
       try {
-        const ObjectDetection& d = result.detections[proposals[i]];
+        const ObjectDetection& d = proposals[i];
         const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
                                       cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
                              image_rect;
@@ -82,6 +87,7 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
         c.pose = estimate.pose;
         c.box = box;
         c.detection_score = d.score;
+        c.from_depth = static_cast<std::size_t>(i) >= network_proposals;
         c.pose_score = estimate.score;
         c.times = estimate.times;
         c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
@@ -124,6 +130,7 @@ struct PickSession::Impl {
   StereoBackend stereo;
   SsdDetector detector;
   PoseModels models;
+  std::vector<ProposalClass> proposal_classes;  // the detector's classes with their parts' sizes
 
   explicit Impl(const PickSettings& s)
       : settings(s),
@@ -141,6 +148,10 @@ struct PickSession::Impl {
                                       "), which " + s.templates + " and " + s.cad +
                                       " do not hold: a detector for other parts than the CAD folder's");
       }
+    }
+    const std::vector<DetectorLabel>& labels = detector.labels();
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      proposal_classes.push_back({labels[i].category_id, static_cast<int>(i), models.mesh(labels[i].category_id).diameter});
     }
   }
 };
@@ -212,6 +223,15 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
                                       result.detection_tiling, settings.detector.iou_threshold);
   result.detector_path = impl_->detector.planned();
   result.seconds.detection = seconds_since(start);
+
+  // The parts the depth shows that no network box matches, proposed too.
+  if (settings.depth_proposals) {
+    start = Clock::now();
+    result.depth = propose_from_depth(result.depth_mm, result.camera, result.detections, impl_->proposal_classes,
+                                      settings.classes_per_box);
+    result.depth_proposals_run = true;
+    result.seconds.segmentation = seconds_since(start);
+  }
 
   // Each detection posed on its own, several at once (one estimator per thread).
   start = Clock::now();

@@ -13,6 +13,7 @@
 #include "host/detect/ssd_detector.h"
 #include "host/detect/tiled_detection.h"
 #include "host/geometry/stereo_camera.h"
+#include "host/pick/depth_proposals.h"
 #include "host/pick/pick_ranking.h"
 #include "host/pose/pose_models.h"
 #include "host/runtime/device_options.h"
@@ -48,12 +49,16 @@ struct PickSettings {
   // across a part's edge): the matcher's time falls with the square of it; detection and
   // pose keep the full image.
   int stereo_downscale = 1;
+  // Parts segmented from the depth above the bin floor that no network box matches are
+  // posed too (host/pick/depth_proposals.h).
+  bool depth_proposals = false;
   bool quiet = false;
 };
 
 struct PickStageSeconds {
   double stereo = 0.0, depth = 0.0, detection = 0.0, pose = 0.0, ranking = 0.0;
-  double total() const { return stereo + depth + detection + pose + ranking; }
+  double segmentation = 0.0;  // proposals from depth (0 when off)
+  double total() const { return stereo + depth + detection + segmentation + pose + ranking; }
 };
 
 struct PickResult {
@@ -66,6 +71,10 @@ struct PickResult {
   // Every pose tried (a box with several classes, ranked; picks are what is left after
   // remove_duplicate_picks), for diagnosis.
   std::vector<PickCandidate> proposals;
+  // The depth segmentation and its proposals (depth_proposals_run: when
+  // PickSettings::depth_proposals is on).
+  bool depth_proposals_run = false;
+  DepthProposals depth;
   TilingPlan detection_tiling;  // the tiles detection ran on (tile 0: the whole image)
   PickStageSeconds seconds;
   std::string stereo_path, detector_path;  // which backend each ran on

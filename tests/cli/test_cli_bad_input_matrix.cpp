@@ -304,6 +304,9 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --retry-below 2 -o " + d + "existing.json",
        "--retry-below"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --depth-proposals maybe -o " + d + "existing.json",
+       "--depth-proposals"},
       // eval-pick
       {"eval-pick " + d + "empty_folder --out " + d + "pick_out --templates " + d + "junk.tpl", d + "empty_folder"},
       {"eval-pick " + d + "nowhere --out " + d + "pick_out --templates " + d + "junk.tpl", d + "nowhere"},

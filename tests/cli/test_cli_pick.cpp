@@ -136,4 +136,29 @@ TEST_F(PickCli, TheSpeedSettingsStillPickParts) {
   EXPECT_GT(document.at("seconds").at("stereo").get<double>(), 0.0);
 }
 
+// With proposals from depth the bin's floor is found, the regions are listed with whether
+// a detector box matched them, and every pose says where its box came from.
+TEST_F(PickCli, DepthProposalsListTheRegionsAndMarkEachPicksSource) {
+  const fs::path picks_path = dir_ / "picks_depth.json";
+  RunResult r = run_flexsight("pick " + (root_ / "bins" / "bin000").string() + " -o " + picks_path.string() +
+                                  " --depth-proposals on --stereo-downscale 2 --half-turns off --retry-below 0" +
+                                  common_options(),
+                              dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json document = read_json(picks_path);
+  const Json& depth = document.at("depth_proposals");
+  EXPECT_TRUE(depth.at("floor").at("found").get<bool>());
+  // The rig looks down from 1250 mm: the floor's normal faces the camera.
+  EXPECT_LT(depth.at("floor").at("normal")[2].get<double>(), -0.9);
+  ASSERT_FALSE(depth.at("regions").empty());
+  int unmatched = 0;
+  for (const Json& region : depth.at("regions")) unmatched += !region.at("matched").get<bool>();
+  EXPECT_LE(unmatched, depth.at("proposals").get<int>());
+  ASSERT_FALSE(document.at("proposals").empty());
+  for (const Json& proposal : document.at("proposals")) {
+    const std::string source = proposal.at("source").get<std::string>();
+    EXPECT_TRUE(source == "network" || source == "depth") << source;
+  }
+}
+
 }  // namespace
