@@ -44,6 +44,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                      {"pose_ms", {{"edges", c.times.edges_ms}, {"search", c.times.search_ms},
                                   {"refine", c.times.refine_ms}, {"icp", c.times.icp_ms},
                                   {"score", c.times.score_ms}}}});
+    if (c.naming_score >= 0.0) picks.back()["naming_score"] = c.naming_score;
   }
   Json proposals = Json::array();
   for (const PickCandidate& c : result.proposals) {
@@ -55,6 +56,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                          {"box", {c.box.x, c.box.y, c.box.width, c.box.height}},
                          {"R", R},
                          {"t_mm", t}});
+    if (c.naming_score >= 0.0) proposals.back()["naming_score"] = c.naming_score;
   }
   const PickStageSeconds& s = result.seconds;
   Json document = {
@@ -73,6 +75,11 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                    {"ranking", s.ranking}, {"total", s.total()}}},
       {"picks", picks},
       {"proposals", proposals}};
+  // Only with a namer, so that pick without one writes what it wrote before.
+  if (!result.namer_path.empty()) {
+    document["namer"] = result.namer_path;
+    document["seconds"]["naming"] = s.naming;
+  }
   return document.dump(1) + "\n";
 }
 

@@ -46,12 +46,25 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
   return upsample_disparity(result.disparity, result.planes_left, left.size());
 }
 
-// Each proposal (pose_proposals) posed in its box, several at once (one estimator per
-// thread); the parts a template fits, in proposal order.
+// The boxes and classes to pose: the namer's (pick_naming.h) when there is one, else the
+// detector's (pose_proposals).
+std::vector<NamedProposal> proposals_to_pose(const PickResult& result, const cv::Mat& bgr, PartNamer* namer,
+                                             const PickSettings& settings) {
+  if (namer != nullptr) {
+    return named_proposals(result.detections, *namer, bgr, settings.classes_per_box, kDuplicateIou, settings.naming_mix);
+  }
+  std::vector<NamedProposal> proposals;
+  for (int i : pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou)) {
+    proposals.push_back({result.detections[i], -1.0});
+  }
+  return proposals;
+}
+
+// Each proposal posed in its box, several at once (one estimator per thread); the parts a
+// template fits, in proposal order.
 std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
-                                           const PickSettings& settings) {
+                                           const PickSettings& settings, const std::vector<NamedProposal>& proposals) {
   const cv::Rect image_rect(cv::Point(), bgr.size());
-  const std::vector<int> proposals = pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou);
   std::vector<PickCandidate> candidates(proposals.size());
   std::vector<bool> posed(proposals.size(), false);
   std::exception_ptr failure;
@@ -62,7 +75,7 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
       try {
-        const ObjectDetection& d = result.detections[proposals[i]];
+        const ObjectDetection& d = proposals[i].detection;
         const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
                                       cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
                              image_rect;
@@ -82,6 +95,7 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
         c.pose = estimate.pose;
         c.box = box;
         c.detection_score = d.score;
+        c.naming_score = proposals[i].naming_score;
         c.pose_score = estimate.score;
         c.times = estimate.times;
         c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
@@ -110,6 +124,7 @@ struct PickSession::Impl {
   StereoBackend stereo;
   SsdDetector detector;
   PoseModels models;
+  std::unique_ptr<PartNamer> namer;
 
   explicit Impl(const PickSettings& s)
       : settings(s),
@@ -123,6 +138,10 @@ struct PickSession::Impl {
                                       "), which " + s.templates + " and " + s.cad +
                                       " do not hold: a detector for other parts than the CAD folder's");
       }
+    }
+    if (!s.namer.empty()) {
+      namer = std::make_unique<PartNamer>(s.namer);
+      namer->require_same_parts(detector.labels(), s.model);
     }
   }
 };
@@ -196,9 +215,14 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.detector_path = impl_->detector.planned();
   result.seconds.detection = seconds_since(start);
 
-  // Each detection posed on its own, several at once (one estimator per thread).
   start = Clock::now();
-  result.picks = pose_detections(result, bgr, impl_->models, settings);
+  const std::vector<NamedProposal> proposals = proposals_to_pose(result, bgr, impl_->namer.get(), settings);
+  if (impl_->namer) result.namer_path = impl_->namer->model_path();
+  result.seconds.naming = seconds_since(start);
+
+  // Each proposal posed on its own, several at once (one estimator per thread).
+  start = Clock::now();
+  result.picks = pose_detections(result, bgr, impl_->models, settings, proposals);
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();
