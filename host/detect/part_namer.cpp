@@ -100,8 +100,6 @@ PartNamer::PartNamer(const std::string& model_path) : impl_(std::make_unique<Imp
   m.model_path = model_path;
   m.files = detector_files(model_path);
   io_detail::require_readable_file(m.files.model);
-  if (!fs::exists(m.files.settings)) throw InputError(m.files.settings, "missing: a naming model needs its model.json");
-  m.settings = read_namer_settings(m.files.settings);
   try {
     QuietLog quiet;
     m.net = cv::dnn::readNetFromONNX(m.files.model);
@@ -111,6 +109,8 @@ PartNamer::PartNamer(const std::string& model_path) : impl_(std::make_unique<Imp
   if (m.net.empty()) throw InputError(m.files.model, "OpenCV reads no layers from it");
   m.net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   m.net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  if (!fs::exists(m.files.settings)) throw InputError(m.files.settings, "missing: a naming model needs its model.json");
+  m.settings = read_namer_settings(m.files.settings);
   std::vector<float> blank;
   try {
     QuietLog quiet;

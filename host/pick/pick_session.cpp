@@ -123,25 +123,23 @@ struct PickSession::Impl {
   ComputeBackend compute;
   StereoBackend stereo;
   SsdDetector detector;
+  std::unique_ptr<PartNamer> namer;  // before the templates: the cheaper files are checked first
   PoseModels models;
-  std::unique_ptr<PartNamer> namer;
 
   explicit Impl(const PickSettings& s)
       : settings(s),
         compute(s.backend),
         stereo(compute),
         detector(s.model, compute, s.detector),
+        namer(s.namer.empty() ? nullptr : std::make_unique<PartNamer>(s.namer)),
         models(s.templates, s.cad) {
+    if (namer) namer->require_same_parts(detector.labels(), s.model);
     for (const DetectorLabel& label : detector.labels()) {
       if (!models.has(label.category_id)) {
         throw InputError(s.model, "detects object " + std::to_string(label.category_id) + " (" + label.name +
                                       "), which " + s.templates + " and " + s.cad +
                                       " do not hold: a detector for other parts than the CAD folder's");
       }
-    }
-    if (!s.namer.empty()) {
-      namer = std::make_unique<PartNamer>(s.namer);
-      namer->require_same_parts(detector.labels(), s.model);
     }
   }
 };

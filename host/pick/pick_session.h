@@ -48,7 +48,8 @@ struct PickSettings {
 };
 
 struct PickStageSeconds {
-  double stereo = 0.0, depth = 0.0, detection = 0.0, naming = 0.0, pose = 0.0, ranking = 0.0;
+  double stereo = 0.0, depth = 0.0, detection = 0.0, pose = 0.0, ranking = 0.0;
+  double naming = 0.0;  // the namer's (pick_naming.h), 0 without one
   double total() const { return stereo + depth + detection + naming + pose + ranking; }
 };
 

@@ -135,7 +135,8 @@ def plot_curve(rows: list[dict], path: Path) -> None:
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--train", type=Path, required=True, help="naming_data.py crops (jittered)")
+    p.add_argument("--train", type=Path, action="append", required=True,
+                   help="naming_data.py crops (jittered); several are joined")
     p.add_argument("--test", type=Path, action="append", default=[], help="held-out crops, reported at the end")
     p.add_argument("--out", type=Path, required=True)
     p.add_argument("--epochs", type=int, default=12)
@@ -153,8 +154,12 @@ def main() -> None:
     device = torch.device(a.device)
     a.out.mkdir(parents=True, exist_ok=True)
 
-    data = np.load(a.train)
-    x_all, y_all, ids = data["x"], data["y"], [int(c) for c in data["category_ids"]]
+    sets = [np.load(path) for path in a.train]
+    x_all = np.concatenate([d["x"] for d in sets])
+    y_all = np.concatenate([d["y"] for d in sets])
+    ids = [int(c) for c in sets[0]["category_ids"]]
+    if any([int(c) for c in d["category_ids"]] != ids for d in sets):
+        raise SystemExit("error: --train sets of different parts")
     size = x_all.shape[1]
     order = np.random.default_rng(a.seed).permutation(len(y_all))
     n_val = int(len(y_all) * a.val_share)
