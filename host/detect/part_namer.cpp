@@ -132,9 +132,11 @@ PartNamer::~PartNamer() = default;
 cv::Mat PartNamer::crop(const cv::Mat& grey, const float box[4]) const {
   const double w = box[2] - box[0], h = box[3] - box[1];
   const double side = std::max(w, h) * (1.0 + 2.0 * impl_->settings.margin);
-  const int s = std::max(4, static_cast<int>(std::lround(side)));
-  const int x0 = static_cast<int>(std::lround(box[0] + w / 2.0 - s / 2.0));
-  const int y0 = static_cast<int>(std::lround(box[1] + h / 2.0 - s / 2.0));
+  // floor(v + 0.5) on both sides (scripts/detect/naming_data.py's square_crop): the
+  // training crops and these must start on the same pixel.
+  const int s = std::max(4, static_cast<int>(std::floor(side + 0.5)));
+  const int x0 = static_cast<int>(std::floor(box[0] + w / 2.0 - s / 2.0 + 0.5));
+  const int y0 = static_cast<int>(std::floor(box[1] + h / 2.0 - s / 2.0 + 0.5));
   const cv::Rect square(x0, y0, s, s);
   const cv::Rect inside = square & cv::Rect(0, 0, grey.cols, grey.rows);
   const int size = impl_->settings.input_size;

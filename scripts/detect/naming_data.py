@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 from pathlib import Path
 
 import cv2
@@ -41,9 +42,10 @@ def square_crop(grey: np.ndarray, box_xywh, size: int, margin: float = NAMING_MA
     side = max(w, h) * (1.0 + 2.0 * margin) * scale
     cx = x + w / 2.0 + shift[0] * side
     cy = y + h / 2.0 + shift[1] * side
-    s = max(4, int(round(side)))
-    x0 = int(round(cx - s / 2.0))
-    y0 = int(round(cy - s / 2.0))
+    # floor(v + 0.5), as the C++ namer rounds (Python's round() goes to even on halves).
+    s = max(4, int(math.floor(side + 0.5)))
+    x0 = int(math.floor(cx - s / 2.0 + 0.5))
+    y0 = int(math.floor(cy - s / 2.0 + 0.5))
     rows, cols = grey.shape
     ix0, iy0 = max(0, x0), max(0, y0)
     ix1, iy1 = min(cols, x0 + s), min(rows, y0 + s)

@@ -89,6 +89,7 @@ def main() -> None:
     detector = cv2.dnn.readNetFromONNX(str(a.detector))
     anchors = anc.read_sidecar(a.detector.parent / "anchors.csv")
     ranks = {k: [] for k in ("namer_at_gt", "detector", "namer_at_detection", "product")}
+    found = 0
     for image_path, parts in bin_instances(a.bins, a.min_visible):
         bgr = cv2.imread(str(image_path), cv2.IMREAD_COLOR)
         grey = cv2.cvtColor(bgr, cv2.COLOR_BGR2GRAY)
@@ -103,6 +104,7 @@ def main() -> None:
                 for k in ("detector", "namer_at_detection", "product"):
                     ranks[k].append(10 ** 6)
                 continue
+            found += 1
             near = near[np.argsort(-s[near], kind="stable")]
             order = list(dict.fromkeys(int(c[i]) for i in near))
             ranks["detector"].append(rank_hit(order, truth))
@@ -114,7 +116,7 @@ def main() -> None:
                 det[c[i]] = max(det[c[i]], s[i])
             ranks["product"].append(rank_hit(np.argsort(-(pd * (det + UNPROPOSED)), kind="stable"), truth))
     n = len(ranks["namer_at_gt"])
-    report = {"bins": str(a.bins), "parts": n, "detector_found": int(sum(r < 10 ** 6 for r in ranks["detector"]))}
+    report = {"bins": str(a.bins), "parts": n, "detector_found": found}
     for k, r in ranks.items():
         r = np.array(r)
         report[k] = {f"top{t}": float((r <= t).mean()) for t in (1, 3, 5)}

@@ -144,6 +144,7 @@ def main() -> None:
     p.add_argument("--lr", type=float, default=3e-3)
     p.add_argument("--width", type=int, default=16, help="channels of the first stage (x2 per stage)")
     p.add_argument("--val-share", type=float, default=0.08)
+    p.add_argument("--max-crops", type=int, default=0, help="train on this many crops at most (0: all)")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--device", default="cpu", choices=["cpu", "cuda"])
     p.add_argument("--threads", type=int, default=2, help="CPU threads (torch.set_num_threads)")
@@ -164,6 +165,8 @@ def main() -> None:
     order = np.random.default_rng(a.seed).permutation(len(y_all))
     n_val = int(len(y_all) * a.val_share)
     val_idx, train_idx = order[:n_val], order[n_val:]
+    if a.max_crops > 0:
+        train_idx = train_idx[:a.max_crops]
     x_val, y_val = x_all[val_idx], torch.from_numpy(y_all[val_idx])
     x_train = torch.from_numpy(x_all[train_idx])
     y_train = torch.from_numpy(y_all[train_idx])
@@ -203,6 +206,8 @@ def main() -> None:
             total += float(loss) * len(idx)
             count += len(idx)
         validate(epoch, total / count, time.time() - start)
+        export_onnx(model, size, a.out / "model.onnx")  # a stopped run leaves its last epoch
+        model.to(device)
         if (time.time() - start) / 60.0 > a.max_minutes:
             print(f"stopped after epoch {epoch}: --max-minutes {a.max_minutes}")
             break
