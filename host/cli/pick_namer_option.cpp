@@ -38,8 +38,9 @@ std::string namer_options_help() {
          "                     the shipped one: " +
          default_namer_model_path() +
          ")\n"
-         "  --namer-mix namer|product  the classes' order: the namer's probability alone\n"
-         "                     (default) or times the detector's score for the class + 0.05\n";
+         "  --namer-mix product|namer  the classes' order: the namer's probability times\n"
+         "                     the detector's score for the class + 0.05 (default), or the\n"
+         "                     namer's alone\n";
 }
 
 }  // namespace flexsight

@@ -38,7 +38,7 @@ struct PickSettings {
   // The namer (host/detect/part_namer.h) whose classes are posed per box instead of the
   // detector's (pick_naming.h); empty: the detector's classes alone.
   std::string namer;
-  NamingMix naming_mix = NamingMix::Namer;
+  NamingMix naming_mix = NamingMix::Product;
   // The pair is matched at 1/stereo_downscale of its size and the disparity brought back
   // along the matcher's planes (host/stereo/disparity_upsampling.h: no depth is mixed
   // across a part's edge): the matcher's time falls with the square of it; detection and
