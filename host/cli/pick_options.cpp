@@ -5,6 +5,7 @@
 
 #include "host/cli/arguments.h"
 #include "host/cli/backend.h"
+#include "host/cli/pick_namer_option.h"
 #include "host/detect/detector_model.h"
 #include "host/io/calibration.h"
 #include "host/io/input_error.h"
@@ -34,6 +35,7 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   settings.templates = take_option(args, "--templates");
   settings.cad = take_option(args, "--cad");
   settings.model = resolve_detector_model_path(take_option(args, "--model"));
+  take_namer_options(args, settings);
   const double score = take_number_option(args, "--score", kPickDetectionScore);
   const std::string threads = take_option(args, "--threads");
   const std::string tile = take_option(args, "--tile");
@@ -98,7 +100,8 @@ std::string pick_options_help() {
           "                     detector proposes, the pose's fit decides)\n"
           "  --classes-per-box K  the detector's K best classes at a box are each posed, the\n"
           "                     best fit kept (default 5; 1: the detector decides alone)\n"
-          "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
+       << namer_options_help()
+       << "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
           "                     the matcher's time falls with N squared; detection and\n"
           "                     pose keep the full image\n"
           "  --edges E          pose edge thresholds: contrast+noise (default: each box's\n"

@@ -21,8 +21,10 @@ std::string number_cell(double value, int decimals, const std::string& unit = ""
 std::string percent(double fraction) { return number_cell(100.0 * fraction, 1, " %"); }
 
 Json stage_json(const PickStageSeconds& s) {
-  return {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
-          {"ranking", s.ranking}, {"total", s.total()}};
+  Json stages = {{"stereo", s.stereo},   {"depth", s.depth},     {"detection", s.detection},
+                 {"pose", s.pose},       {"ranking", s.ranking}, {"total", s.total()}};
+  if (s.naming > 0.0) stages["naming"] = s.naming;  // only with a namer (pick's --namer)
+  return stages;
 }
 
 }  // namespace
@@ -48,6 +50,7 @@ void summarize(PickReport& report) {
     sum.detection += bin.seconds.detection;
     sum.pose += bin.seconds.pose;
     sum.ranking += bin.seconds.ranking;
+    sum.naming += bin.seconds.naming;
     truth.push_back(bin.truth_boxes);
     detections.push_back(bin.detected_boxes);
   }
@@ -56,7 +59,7 @@ void summarize(PickReport& report) {
   report.top1_correct = top1 / n;
   report.bad2_pattern = bad2 / n;
   report.bad2_no_pattern = passive_bins > 0 ? bad2_passive / passive_bins : std::nan("");
-  report.mean_seconds = {sum.stereo / n, sum.depth / n, sum.detection / n, sum.pose / n, sum.ranking / n};
+  report.mean_seconds = {sum.stereo / n, sum.depth / n, sum.detection / n, sum.pose / n, sum.ranking / n, sum.naming / n};
   report.seconds_per_bin = report.mean_seconds.total();
   const DetectionScores scores = evaluate_detections(truth, detections, report.categories);
   report.detection_map50 = scores.map50;
@@ -119,6 +122,7 @@ std::string to_markdown(const PickReport& report) {
      << "| stereo | " << number_cell(report.mean_seconds.stereo, 2) << " |\n"
      << "| depth | " << number_cell(report.mean_seconds.depth, 2) << " |\n"
      << "| detection | " << number_cell(report.mean_seconds.detection, 2) << " |\n"
+     << (report.mean_seconds.naming > 0.0 ? "| naming | " + number_cell(report.mean_seconds.naming, 2) + " |\n" : "")
      << "| pose | " << number_cell(report.mean_seconds.pose, 2) << " |\n"
      << "| ranking | " << number_cell(report.mean_seconds.ranking, 3) << " |\n\n"
      << "| bin | parts | >= 50 % visible | posed | picks | top pick | its ADD(-S)/d | bad-2 pattern | bad-2 none | seconds |\n"

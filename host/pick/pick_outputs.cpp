@@ -68,6 +68,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                                   {"refine", c.times.refine_ms}, {"icp", c.times.icp_ms},
                                   {"score", c.times.score_ms}}}});
     if (result.depth_proposals_run) picks.back()["source"] = c.from_depth ? "depth" : "network";
+    if (c.naming_score >= 0.0) picks.back()["naming_score"] = c.naming_score;
   }
   Json proposals = Json::array();
   for (const PickCandidate& c : result.proposals) {
@@ -80,6 +81,7 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
                          {"R", R},
                          {"t_mm", t}});
     if (result.depth_proposals_run) proposals.back()["source"] = c.from_depth ? "depth" : "network";
+    if (c.naming_score >= 0.0) proposals.back()["naming_score"] = c.naming_score;
   }
   const PickStageSeconds& s = result.seconds;
   Json document = {
@@ -100,6 +102,11 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
       {"picks", picks},
       {"proposals", proposals}};
   if (result.depth_proposals_run) document["depth_proposals"] = depth_proposals_json(result.depth, s.segmentation);
+  // Only with a namer, so that pick without one writes what it wrote before.
+  if (!result.namer_path.empty()) {
+    document["namer"] = result.namer_path;
+    document["seconds"]["naming"] = s.naming;
+  }
   return document.dump(1) + "\n";
 }
 

@@ -20,6 +20,7 @@ struct PickCandidate {
   Pose pose;                     // model -> camera, mm
   cv::Rect box;                  // the detection's box, pixels
   double detection_score = 0.0;  // the detector's
+  double naming_score = -1.0;    // the namer's probability of obj_id at the box; -1 without a namer
   double pose_score = 0.0;       // the pose estimator's (edge fit x depth fit), 0..1
   double visible_fraction = 0.0; // of the part's pixels at its pose, those not behind
                                  // a nearer measured surface

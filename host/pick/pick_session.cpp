@@ -46,17 +46,25 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
   return upsample_disparity(result.disparity, result.planes_left, left.size());
 }
 
-// Each proposal (pose_proposals) posed in its box, several at once (one estimator per
-// thread); the parts a template fits, in proposal order.
-std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
-                                           const PickSettings& settings) {
-  const cv::Rect image_rect(cv::Point(), bgr.size());
-  std::vector<ObjectDetection> proposals;
-  for (int i : pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou)) {
-    proposals.push_back(result.detections[i]);
+// The boxes and classes to pose: the namer's (pick_naming.h) when there is one, else the
+// detector's (pose_proposals).
+std::vector<NamedProposal> proposals_to_pose(const PickResult& result, const cv::Mat& bgr, PartNamer* namer,
+                                             const PickSettings& settings) {
+  if (namer != nullptr) {
+    return named_proposals(result.detections, *namer, bgr, settings.classes_per_box, kDuplicateIou, settings.naming_mix);
   }
-  const std::size_t network_proposals = proposals.size();
-  proposals.insert(proposals.end(), result.depth.boxes.begin(), result.depth.boxes.end());
+  std::vector<NamedProposal> proposals;
+  for (int i : pose_proposals(result.detections, settings.classes_per_box, kDuplicateIou)) {
+    proposals.push_back({result.detections[i], -1.0});
+  }
+  return proposals;
+}
+
+// Each proposal posed in its box, several at once (one estimator per thread); the parts a
+// template fits, in proposal order.
+std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
+                                           const PickSettings& settings, const std::vector<NamedProposal>& proposals) {
+  const cv::Rect image_rect(cv::Point(), bgr.size());
   std::vector<PickCandidate> candidates(proposals.size());
   std::vector<bool> posed(proposals.size(), false);
   std::exception_ptr failure;
@@ -67,7 +75,7 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
 #pragma omp for schedule(dynamic)
     for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
       try {
-        const ObjectDetection& d = proposals[i];
+        const ObjectDetection& d = proposals[i].detection;
         const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
                                       cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
                              image_rect;
@@ -87,7 +95,8 @@ std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::M
         c.pose = estimate.pose;
         c.box = box;
         c.detection_score = d.score;
-        c.from_depth = static_cast<std::size_t>(i) >= network_proposals;
+        c.from_depth = proposals[i].from_depth;
+        c.naming_score = proposals[i].naming_score;
         c.pose_score = estimate.score;
         c.times = estimate.times;
         c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
@@ -129,6 +138,7 @@ struct PickSession::Impl {
   ComputeBackend compute;
   StereoBackend stereo;
   SsdDetector detector;
+  std::unique_ptr<PartNamer> namer;  // before the templates: the cheaper files are checked first
   PoseModels models;
   std::vector<ProposalClass> proposal_classes;  // the detector's classes with their parts' sizes
 
@@ -137,7 +147,9 @@ struct PickSession::Impl {
         compute(s.backend),
         stereo(compute),
         detector(s.model, compute, s.detector),
+        namer(s.namer.empty() ? nullptr : std::make_unique<PartNamer>(s.namer)),
         models(s.templates, s.cad) {
+    if (namer) namer->require_same_parts(detector.labels(), s.model);
     if (!s.detector.parts.every_part()) {
       check_known_parts(s.detector.parts, models, s);
       return;
@@ -224,18 +236,24 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.detector_path = impl_->detector.planned();
   result.seconds.detection = seconds_since(start);
 
+  start = Clock::now();
+  std::vector<NamedProposal> proposals = proposals_to_pose(result, bgr, impl_->namer.get(), settings);
+  if (impl_->namer) result.namer_path = impl_->namer->model_path();
+  result.seconds.naming = seconds_since(start);
+
   // The parts the depth shows that no network box matches, proposed too.
   if (settings.depth_proposals) {
     start = Clock::now();
     result.depth = propose_from_depth(result.depth_mm, result.camera, result.detections, impl_->proposal_classes,
                                       settings.classes_per_box);
     result.depth_proposals_run = true;
+    for (const ObjectDetection& box : result.depth.boxes) proposals.push_back({box, -1.0, true});
     result.seconds.segmentation = seconds_since(start);
   }
 
-  // Each detection posed on its own, several at once (one estimator per thread).
+  // Each proposal posed on its own, several at once (one estimator per thread).
   start = Clock::now();
-  result.picks = pose_detections(result, bgr, impl_->models, settings);
+  result.picks = pose_detections(result, bgr, impl_->models, settings, proposals);
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();

@@ -14,6 +14,7 @@
 #include "host/detect/tiled_detection.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/pick/depth_proposals.h"
+#include "host/pick/pick_naming.h"
 #include "host/pick/pick_ranking.h"
 #include "host/pose/pose_models.h"
 #include "host/runtime/device_options.h"
@@ -44,6 +45,10 @@ struct PickSettings {
   int detection_tile = -1;
   // Classes posed per box (pose_proposals in host/pick/pick_ranking.h), the best fit kept.
   int classes_per_box = 5;
+  // The namer (host/detect/part_namer.h) whose classes are posed per box instead of the
+  // detector's (pick_naming.h); empty: the detector's classes alone.
+  std::string namer;
+  NamingMix naming_mix = NamingMix::Product;
   // The pair is matched at 1/stereo_downscale of its size and the disparity brought back
   // along the matcher's planes (host/stereo/disparity_upsampling.h: no depth is mixed
   // across a part's edge): the matcher's time falls with the square of it; detection and
@@ -58,7 +63,8 @@ struct PickSettings {
 struct PickStageSeconds {
   double stereo = 0.0, depth = 0.0, detection = 0.0, pose = 0.0, ranking = 0.0;
   double segmentation = 0.0;  // proposals from depth (0 when off)
-  double total() const { return stereo + depth + detection + segmentation + pose + ranking; }
+  double naming = 0.0;        // the namer's (pick_naming.h), 0 without one
+  double total() const { return stereo + depth + detection + naming + segmentation + pose + ranking; }
 };
 
 struct PickResult {
@@ -78,6 +84,7 @@ struct PickResult {
   TilingPlan detection_tiling;  // the tiles detection ran on (tile 0: the whole image)
   PickStageSeconds seconds;
   std::string stereo_path, detector_path;  // which backend each ran on
+  std::string namer_path;                  // the namer's model; empty without one
 };
 
 class PickSession {

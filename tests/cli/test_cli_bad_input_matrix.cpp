@@ -301,6 +301,15 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --half-turns maybe -o " + d + "existing.json",
        "--half-turns"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +
+           d + "nope.onnx -o " + d + "existing.json",
+       d + "nope.onnx"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +
+           d + "junk.onnx -o " + d + "existing.json",
+       d + "junk.onnx"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --namer-mix maybe -o " + d + "existing.json",
+       "--namer-mix"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --retry-below 2 -o " + d + "existing.json",
        "--retry-below"},
