@@ -8,30 +8,12 @@
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+#include "tests/eval/detection_boxes.h"
 
 namespace flexsight {
 namespace {
 
-constexpr double kTight = 1e-12;
-
-TruthBox truth(int category, double x, double y, double w, double h, bool crowd = false) {
-  TruthBox box;
-  box.category_id = category;
-  box.bbox = {x, y, w, h};
-  box.area = w * h;
-  box.crowd = crowd;
-  return box;
-}
-
-DetectedBox detected(int category, double x, double y, double w, double h, double score) {
-  DetectedBox box;
-  box.category_id = category;
-  box.bbox = {x, y, w, h};
-  box.score = score;
-  return box;
-}
-
-const std::vector<DetectionCategory> kTwoClasses = {{1, "one"}, {2, "two"}};
+using namespace detection_boxes;
 
 const SizeFigures& bin_named(const DetectionBreakdown& b, const std::string& label) {
   for (const SizeFigures& size : b.sizes) {

@@ -12,30 +12,12 @@
 #include "host/eval/detection_metrics.h"
 #include "host/eval/detection_results_reader.h"
 #include "host/io/input_error.h"
+#include "tests/eval/detection_boxes.h"
 
 namespace flexsight {
 namespace {
 
-constexpr double kTight = 1e-12;
-
-TruthBox truth(int category, double x, double y, double w, double h, bool crowd = false) {
-  TruthBox box;
-  box.category_id = category;
-  box.bbox = {x, y, w, h};
-  box.area = w * h;
-  box.crowd = crowd;
-  return box;
-}
-
-DetectedBox detected(int category, double x, double y, double w, double h, double score) {
-  DetectedBox box;
-  box.category_id = category;
-  box.bbox = {x, y, w, h};
-  box.score = score;
-  return box;
-}
-
-const std::vector<DetectionCategory> kTwoClasses = {{1, "one"}, {2, "two"}};
+using namespace detection_boxes;
 
 // The COCO AP of one class whose envelope is `high` up to recall `reach` (a multiple of
 // 0.01) and `low` beyond, up to recall 1: the 101 recall points 0, 0.01, ..., 1 split
