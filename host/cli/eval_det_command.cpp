@@ -220,10 +220,11 @@ int run_eval_det_command(std::vector<std::string> args) {
     throw InputError(truth.source(), "has no ground-truth box (no visible object): nothing to score");
   }
   // The detector reads every image; a results file needs only the montage's first ones.
-  truth.check_images(options.results.empty() ? truth.images().size() : static_cast<std::size_t>(options.montage));
-  if (options.tile > 0) {
-    for (std::size_t i = 0; i < truth.images().size(); ++i) {
-      check_tile_fits(options.tile, truth.load_rgb(i).size(), "image " + std::to_string(i + 1) + " of " + truth.source());
+  const std::vector<cv::Size> sizes =
+      truth.check_images(options.results.empty() ? truth.images().size() : static_cast<std::size_t>(options.montage));
+  if (options.tile > 0) {  // --tile runs the detector: every image was required above
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+      check_tile_fits(options.tile, sizes[i], "image " + std::to_string(i + 1) + " of " + truth.source());
     }
   }
   // The output folder is checked (and its staging folder made) before the detector runs.

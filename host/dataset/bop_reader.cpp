@@ -186,17 +186,18 @@ AnnotatedImage BopReader::load(std::size_t i) const {
   return image;
 }
 
-void BopReader::check_boxes_inside_image(std::size_t i, bool require_image) const {
+cv::Size BopReader::check_boxes_inside_image(std::size_t i, bool require_image) const {
   const Entry& entry = index_.at(i);
   const Scene& scene = scenes_[entry.scene];
-  if (!scene.json.has_gt_info) return;
+  if (!scene.json.has_gt_info) return {};
   const std::string rgb = require_image ? find_rgb(scene.dir, entry.im_id) : existing_rgb(scene.dir, entry.im_id);
-  if (rgb.empty()) return;
+  if (rgb.empty()) return {};
   const cv::Size size = image_size_from_header(rgb);
   const std::vector<PartAnnotation>& parts = scene.json.images.at(entry.im_id).parts;
   for (std::size_t gt = 0; gt < parts.size(); ++gt) {
     require_inside(parts[gt].bbox_visib, size, scene.dir, entry.im_id, static_cast<int>(gt));
   }
+  return size;
 }
 
 }  // namespace flexsight

@@ -48,7 +48,9 @@ class BopReader {
   // file's header (image_header.h), and every bbox_visib of scene_gt_info.json checked to
   // lie inside it, the error naming that file as load() would. `require_image`: a missing
   // image is an error; otherwise (a command that only scores boxes) it is skipped.
-  void check_boxes_inside_image(std::size_t i, bool require_image) const;
+  // Returns the image's size (empty when it was skipped or the scene has no
+  // scene_gt_info.json).
+  cv::Size check_boxes_inside_image(std::size_t i, bool require_image) const;
 
  private:
   struct Scene {

@@ -200,10 +200,12 @@ void CocoReader::require_entry_size(std::size_t index, const cv::Size& size) con
                                           std::to_string(entry.height));
 }
 
-void CocoReader::check_image_size(std::size_t index, bool require_image) const {
+cv::Size CocoReader::check_image_size(std::size_t index, bool require_image) const {
   const std::string path = image_path(index);
-  if (!require_image && !dataset_files::is_file(path)) return;
-  require_entry_size(index, image_size_from_header(path));
+  if (!require_image && !dataset_files::is_file(path)) return {};
+  const cv::Size size = image_size_from_header(path);
+  require_entry_size(index, size);
+  return size;
 }
 
 AnnotatedImage CocoReader::load(std::size_t index) const {

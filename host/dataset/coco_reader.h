@@ -40,8 +40,8 @@ class CocoReader {
   // its file's header (image_header.h) checked against the file's width and height (the
   // annotations were checked against those when the file was read), the error naming
   // the image as load() would. `require_image`: a missing image is an error; otherwise
-  // (a command that only scores boxes) it is skipped.
-  void check_image_size(std::size_t index, bool require_image) const;
+  // (a command that only scores boxes) it is skipped. Returns the size (empty when skipped).
+  cv::Size check_image_size(std::size_t index, bool require_image) const;
 
  private:
   std::string image_path(std::size_t index) const;

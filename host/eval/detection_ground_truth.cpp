@@ -122,15 +122,14 @@ cv::Mat DetectionGroundTruth::load_rgb(std::size_t i) const {
   return coco_ ? coco_->load(index).rgb : bop_->load(index).rgb;
 }
 
-void DetectionGroundTruth::check_images(std::size_t loaded_count) const {
+std::vector<cv::Size> DetectionGroundTruth::check_images(std::size_t loaded_count) const {
+  std::vector<cv::Size> sizes;
   for (std::size_t i = 0; i < reader_index_.size(); ++i) {
     const bool loaded = i < loaded_count;
-    if (coco_) {
-      coco_->check_image_size(reader_index_[i], loaded);
-    } else {
-      bop_->check_boxes_inside_image(reader_index_[i], loaded);
-    }
+    sizes.push_back(coco_ ? coco_->check_image_size(reader_index_[i], loaded)
+                          : bop_->check_boxes_inside_image(reader_index_[i], loaded));
   }
+  return sizes;
 }
 
 }  // namespace flexsight

@@ -55,8 +55,9 @@ class DetectionGroundTruth {
   // The up-front pass of a command that will load images 0..loaded_count-1: their sizes
   // read from the files' headers and checked against the boxes (BOP) or the file's sizes
   // (COCO); images past loaded_count are checked when they are there. Throws InputError
-  // naming the file, as load_rgb would later.
-  void check_images(std::size_t loaded_count) const;
+  // naming the file, as load_rgb would later. Returns each image's size from its header
+  // (empty for an image that was not there, or a BOP scene without scene_gt_info.json).
+  std::vector<cv::Size> check_images(std::size_t loaded_count) const;
 
  private:
   void read_coco_file(const std::string& path);
