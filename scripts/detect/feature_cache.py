@@ -29,7 +29,7 @@ def cache_key(data: CocoSet, backbone: str, image_size: int, tune_from: int) -> 
 
 
 def cache_features(model: SSDMobileNetV2, data: CocoSet, cache_dir: Path, key: str,
-                   tune_from: int, batch: int = 16):
+                   tune_from: int, batch: int = 16, device: str = "cpu"):
     """Float16 memmaps, channels last (the layout the channels-last layers read without a copy):
     with the whole extractor frozen its two feature maps [N, 19, 19, 576] and [N, 10, 10, 1280];
     with blocks from tune_from on trained, the frozen stem's output (e.g. [N, 19, 19, 96] for
@@ -59,9 +59,9 @@ def cache_features(model: SSDMobileNetV2, data: CocoSet, cache_dir: Path, key: s
     with torch.no_grad():
         for start in range(0, n, batch):
             idx = range(start, min(start + batch, n))
-            x = data.images_tensor(idx, model.image_size).contiguous(memory_format=CL)
+            x = data.images_tensor(idx, model.image_size).contiguous(memory_format=CL).to(device)
             for m, f in zip(maps, compute(x)):
-                m[start:start + len(idx)] = f.permute(0, 2, 3, 1).half().numpy()
+                m[start:start + len(idx)] = f.permute(0, 2, 3, 1).half().cpu().numpy()
             done = start + len(idx)
             if done == n or (start // batch) % 10 == 0:
                 print("features: %d/%d images, %.1f images/s" % (done, n, done / (time.time() - t0)),

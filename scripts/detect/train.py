@@ -17,6 +17,7 @@ loss.png, summary.json (timings, losses, AP@0.5 of the
 validation images and of as many training images).
 
     python3 -m detect.train --data DIR --out RUN --epochs 30     # from scripts/
+    python3 -m detect.train --data DIR --out RUN --device cuda   # the same on a GPU
 """
 from __future__ import annotations
 
@@ -92,9 +93,9 @@ def split(n: int, val_fraction: float, seed: int):
 
 def batch_inputs(args, model, data, feats, idx):
     if feats is None:
-        return data.images_tensor(idx, model.image_size).contiguous(memory_format=CL)
+        return data.images_tensor(idx, model.image_size).contiguous(memory_format=CL).to(args.device)
     # NHWC float16 on disk -> NCHW float32 tensors with channels-last strides, no copy but the cast.
-    return tuple(torch.from_numpy(f[idx]).float().permute(0, 3, 1, 2) for f in feats)
+    return tuple(torch.from_numpy(f[idx]).to(args.device).float().permute(0, 3, 1, 2) for f in feats)
 
 
 def forward(model, inputs, args):
@@ -116,7 +117,7 @@ def evaluate(args, model, data, feats, labels, targets, idx):
         for s in range(0, len(idx), args.batch_size):
             b = idx[s:s + args.batch_size]
             out = forward(model, batch_inputs(args, model, data, feats, b), args)
-            loc, cls = ssd_loss(*out, labels[b], targets[b])
+            loc, cls = ssd_loss(*out, labels[b].to(args.device), targets[b].to(args.device))
             tot += np.array([loc.item(), cls.item()]) * len(b)
     return tot / max(len(idx), 1)
 
@@ -131,10 +132,12 @@ def average_precision(args, model, data, feats, idx, per_class: bool = False):
         for s in range(0, len(idx), args.batch_size):
             b = idx[s:s + args.batch_size]
             if feats is None:
-                boxes, logits = model(data.images_tensor(b, model.image_size).contiguous(memory_format=CL))
+                boxes, logits = model(data.images_tensor(b, model.image_size)
+                                      .contiguous(memory_format=CL).to(args.device))
             else:
                 boxes, logits = forward(model, batch_inputs(args, model, data, feats, b), args)
-            dets += [decode_detections(x.numpy(), y.numpy(), anchors) for x, y in zip(boxes, logits)]
+            dets += [decode_detections(x.cpu().numpy(), y.cpu().numpy(), anchors)
+                     for x, y in zip(boxes, logits)]
     result = average_precision_50(dets, [data.gt[i] for i in idx], model.detector.num_classes)
     return result if per_class else result[0]
 
@@ -244,7 +247,13 @@ def main(argv=None) -> int:
     ap.add_argument("--ap-images", type=int, default=500,
                     help="validation images scored for the mAP curve after every epoch (0: none)")
     ap.add_argument("--no-export", action="store_true", help="skip the ONNX export at the end")
+    ap.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
+                    help="where the network runs (feature caching, training, AP); the outputs are "
+                         "written from the CPU either way")
     args = ap.parse_args(argv)
+    if args.device == "cuda" and not torch.cuda.is_available():
+        print("error: --device cuda: this PyTorch sees no CUDA device", file=sys.stderr)
+        return 2
 
     seed_everything(args.seed)
     torch.set_num_threads(args.threads)
@@ -257,7 +266,7 @@ def main(argv=None) -> int:
     print("data: %d images, %d boxes, %d categories from %s"
           % (len(data), sum(len(g[1]) for g in data.gt), len(data.categories), coco_path))
     model = build_model(len(data.categories), args.backbone, args.class_heads)
-    model = model.to(memory_format=CL)
+    model = model.to(device=args.device, memory_format=CL)
     anchors = anc.generate()
     labels, targets = match_all(data, anchors)
     print("matching: %.1f positive anchors per image" % (labels > 0).sum(1).float().mean())
@@ -277,7 +286,7 @@ def main(argv=None) -> int:
             return 2
         key = cache_key(data, args.backbone, model.image_size, args.tune_from)
         feats = cache_features(model, data, args.cache or args.out / "features", key,
-                               args.tune_from)
+                               args.tune_from, device=args.device)
         for p in model.backbone.parameters():
             p.requires_grad_(False)
         params = [{"params": model.detector.parameters(), "lr": args.lr}]
@@ -322,7 +331,7 @@ def main(argv=None) -> int:
             for g, lr in zip(opt.param_groups, base):
                 g["lr"] = lr * f
             out = forward(model, batch_inputs(args, model, data, feats, b), args)
-            loc, cls = ssd_loss(*out, labels[b], targets[b])
+            loc, cls = ssd_loss(*out, labels[b].to(args.device), targets[b].to(args.device))
             loss = loc + cls
             opt.zero_grad()
             loss.backward()
@@ -386,7 +395,7 @@ def main(argv=None) -> int:
                            "ap50_per_class": {names[c - 1]: v for c, v in per_class.items()}}
         print("AP@0.5 on the held-out test set (%d images): %.3f" % (len(test), m))
     (args.out / "summary.json").write_text(json.dumps(finite_or_null(summary), indent=1) + "\n")
-    model = model.eval().to(memory_format=torch.contiguous_format)
+    model = model.eval().to(device="cpu", memory_format=torch.contiguous_format)
     torch.save({"model": model.state_dict(), "num_classes": model.detector.num_classes,
                 "categories": data.categories, "args": {k: str(v) for k, v in vars(args).items()}},
                args.out / "model.pt")

@@ -69,6 +69,21 @@ class TrainSmoke(unittest.TestCase):
         # A second run on the same images reuses the cache.
         self.assertEqual(train.main(["--data", str(data), "--out", str(run), "--epochs", "1",
                                      "--batch-size", "4", "--no-export"]), 0)
+        self.check_device_option(data)
+
+    def check_device_option(self, data):
+        """--device cuda trains on a GPU where PyTorch sees one (the outputs are written from the
+        CPU, so the C++ detector reads them alike) and is refused with one line where it does not."""
+        import torch
+        run = WORK / "run_cuda"
+        args = ["--data", str(data), "--out", str(run), "--epochs", "1", "--batch-size", "4",
+                "--device", "cuda"]
+        if torch.cuda.is_available():
+            self.assertEqual(train.main(args), 0)
+            self.assertTrue((run / "model.onnx").is_file())
+        else:
+            self.assertEqual(train.main(args), 2)
+            self.assertFalse(run.exists(), "a refused run must write nothing")
 
 
 if __name__ == "__main__":
