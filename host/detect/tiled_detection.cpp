@@ -30,11 +30,21 @@ std::vector<int> tile_starts(int length, int tile, int stride) {
   return starts;
 }
 
-bool cut_by_tile_edge(const ObjectDetection& d, const cv::Rect& tile, cv::Size image) {
-  return (tile.x > 0 && d.box[0] <= tile.x + kCutMarginPx) ||
-         (tile.y > 0 && d.box[1] <= tile.y + kCutMarginPx) ||
-         (tile.x + tile.width < image.width && d.box[2] >= tile.x + tile.width - kCutMarginPx) ||
-         (tile.y + tile.height < image.height && d.box[3] >= tile.y + tile.height - kCutMarginPx);
+// Whether `d` touches an edge of `tile` that lies inside `bounds` (the image or the
+// plan's region): there a neighbouring tile sees the part whole.
+bool cut_by_tile_edge(const ObjectDetection& d, const cv::Rect& tile, const cv::Rect& bounds) {
+  return (tile.x > bounds.x && d.box[0] <= tile.x + kCutMarginPx) ||
+         (tile.y > bounds.y && d.box[1] <= tile.y + kCutMarginPx) ||
+         (tile.br().x < bounds.br().x && d.box[2] >= tile.br().x - kCutMarginPx) ||
+         (tile.br().y < bounds.br().y && d.box[3] >= tile.br().y - kCutMarginPx);
+}
+
+// The part of `image` the plan covers: its region clipped to the image, else the image.
+cv::Rect plan_bounds(cv::Size image, const TilingPlan& plan) {
+  const cv::Rect whole(cv::Point(), image);
+  if (plan.region.empty()) return whole;
+  const cv::Rect clipped = plan.region & whole;
+  return clipped.empty() ? whole : clipped;
 }
 
 }  // namespace
@@ -59,10 +69,11 @@ bool tile_fits(cv::Size image, int tile) { return tile <= image.width && tile <=
 std::vector<cv::Rect> detection_tiles(cv::Size image, const TilingPlan& plan) {
   std::vector<cv::Rect> tiles;
   if (plan.tile <= 0) return tiles;
+  const cv::Rect bounds = plan_bounds(image, plan);
   const int stride = std::clamp(plan.stride, 1, plan.tile);
-  for (int y : tile_starts(image.height, plan.tile, stride)) {
-    for (int x : tile_starts(image.width, plan.tile, stride)) {
-      tiles.emplace_back(cv::Rect(x, y, plan.tile, plan.tile) & cv::Rect(cv::Point(), image));
+  for (int y : tile_starts(bounds.height, plan.tile, stride)) {
+    for (int x : tile_starts(bounds.width, plan.tile, stride)) {
+      tiles.emplace_back(cv::Rect(bounds.x + x, bounds.y + y, plan.tile, plan.tile) & bounds);
     }
   }
   return tiles;
@@ -71,8 +82,10 @@ std::vector<cv::Rect> detection_tiles(cv::Size image, const TilingPlan& plan) {
 std::vector<ObjectDetection> detect_in_tiles(
     const std::function<std::vector<ObjectDetection>(const cv::Mat&)>& detect, const cv::Mat& image,
     const TilingPlan& plan, float iou_threshold) {
-  const std::vector<cv::Rect> tiles = detection_tiles(image.size(), plan);
-  if (tiles.empty()) return detect(image);
+  std::vector<cv::Rect> tiles = detection_tiles(image.size(), plan);
+  if (tiles.empty() && plan.region.empty()) return detect(image);
+  const cv::Rect bounds = plan_bounds(image.size(), plan);
+  if (tiles.empty()) tiles.push_back(bounds);
   std::vector<ObjectDetection> all;
   for (const cv::Rect& tile : tiles) {
     for (ObjectDetection d : detect(image(tile))) {
@@ -80,7 +93,7 @@ std::vector<ObjectDetection> detect_in_tiles(
       d.box[2] += tile.x;
       d.box[1] += tile.y;
       d.box[3] += tile.y;
-      if (!cut_by_tile_edge(d, tile, image.size())) all.push_back(d);
+      if (!cut_by_tile_edge(d, tile, bounds)) all.push_back(d);
     }
   }
   // Best first; ties in the order the tiles found them, so the result does not depend on

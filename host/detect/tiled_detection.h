@@ -27,6 +27,9 @@ struct TilingPlan {
   int tile = 0;
   // Pixels between the starts of neighbouring tiles (at most `tile`).
   int stride = 0;
+  // Where parts can be (e.g. a bin's inside, host/stereo's region of interest): tiles
+  // cover it alone and its edges count as the image's. Empty: the whole image.
+  cv::Rect region;
 };
 
 // Tiles for parts about `typical_part` pixels across: tile = typical_part /
@@ -45,12 +48,12 @@ TilingPlan fixed_tiling(int tile);
 // larger tile would only be the image clipped, which the whole-image detection is.
 bool tile_fits(cv::Size image, int tile);
 
-// The tiles of `plan` over `image`, row by row, spread evenly with neighbours at most
-// plan.stride apart; the last row and column end at the image's edge. Empty when
-// plan.tile is 0.
+// The tiles of `plan` over `image` (over plan.region within it, when given), row by row,
+// spread evenly with neighbours at most plan.stride apart; the last row and column end
+// at the image's (region's) edge. Empty when plan.tile is 0.
 std::vector<cv::Rect> detection_tiles(cv::Size image, const TilingPlan& plan);
 
-// `detect` on every tile (on the whole image when plan.tile is 0; the whole image is
+// `detect` on every tile (on the whole image, or plan.region, when plan.tile is 0; the whole image is
 // not added to tiles: there the parts are below the training sizes, and its boxes are
 // the ones spanning several parts); a tile's boxes moved into the image's pixels, those
 // touching one of the tile's edges inside the image dropped (a cut part: a neighbouring

@@ -82,6 +82,34 @@ TEST(TiledDetection, EveryPartFoundOnceWholeEvenWhereTilesCutIt) {
   }
 }
 
+TEST(TiledDetection, ARegionIsTiledAloneAndItsEdgesCutNothing) {
+  cv::Mat image(600, 800, CV_8UC3, cv::Scalar(40, 40, 40));
+  // Inside the region (100..700 x 50..550), one part on its left edge and one across a
+  // tile seam; one outside it, which is not looked at.
+  const cv::Rect region(100, 50, 600, 500);
+  const std::vector<cv::Rect> inside = {{100, 200, 60, 50}, {380, 260, 70, 60}};
+  const cv::Rect outside(20, 20, 50, 40);
+  for (const cv::Rect& r : inside) cv::rectangle(image, r, cv::Scalar(255, 255, 255), cv::FILLED);
+  cv::rectangle(image, outside, cv::Scalar(255, 255, 255), cv::FILLED);
+  TilingPlan plan{300, 200, region};
+  const std::vector<cv::Rect> tiles = detection_tiles(image.size(), plan);
+  ASSERT_EQ(tiles.size(), 6u);  // columns at 100, 250, 400; rows at 50, 250
+  for (const cv::Rect& tile : tiles) EXPECT_EQ(tile & region, tile);
+  const auto expect_inside_found_whole = [&](const std::vector<ObjectDetection>& found) {
+    ASSERT_EQ(found.size(), inside.size());
+    for (const cv::Rect& r : inside) {
+      const bool whole = std::any_of(found.begin(), found.end(), [&](const ObjectDetection& d) {
+        return d.box[0] == r.x && d.box[1] == r.y && d.box[2] == r.x + r.width && d.box[3] == r.y + r.height;
+      });
+      EXPECT_TRUE(whole) << "part at " << r.x << ", " << r.y << " not found whole";
+    }
+  };
+  expect_inside_found_whole(detect_in_tiles(white_rectangles, image, plan, 0.5f));
+  // Without tiles the region is detected as one image, its boxes in the image's pixels.
+  plan.tile = 0;
+  expect_inside_found_whole(detect_in_tiles(white_rectangles, image, plan, 0.5f));
+}
+
 TEST(TiledDetection, WholeImageOnlyWithoutTiles) {
   cv::Mat image(200, 300, CV_8UC3, cv::Scalar(0, 0, 0));
   cv::rectangle(image, cv::Rect(10, 10, 50, 50), cv::Scalar(255, 255, 255), cv::FILLED);
