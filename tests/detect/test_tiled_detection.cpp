@@ -35,7 +35,7 @@ std::vector<ObjectDetection> white_rectangles(const cv::Mat& tile) {
 
 TEST(TiledDetection, TilesCoverTheImageAndEndAtItsEdges) {
   const cv::Size image(1280, 960);
-  const TilingPlan plan{400, 250};
+  const TilingPlan plan{400, 250, {}};
   const std::vector<cv::Rect> tiles = detection_tiles(image, plan);
   // Columns at 0, 220, 440, 660, 880 (the last ending at 1280), rows at 0, 187, 373, 560:
   // spread evenly, never more than the stride apart.
@@ -72,7 +72,7 @@ TEST(TiledDetection, EveryPartFoundOnceWholeEvenWhereTilesCutIt) {
   const std::vector<cv::Rect> parts = {{180, 150, 60, 50}, {280, 270, 70, 60}, {500, 100, 40, 90},
                                        {690, 480, 80, 80}, {20, 20, 50, 40}};
   for (const cv::Rect& r : parts) cv::rectangle(image, r, cv::Scalar(255, 255, 255), cv::FILLED);
-  const std::vector<ObjectDetection> found = detect_in_tiles(white_rectangles, image, {300, 200}, 0.5f);
+  const std::vector<ObjectDetection> found = detect_in_tiles(white_rectangles, image, TilingPlan{300, 200, {}}, 0.5f);
   ASSERT_EQ(found.size(), parts.size());
   for (const cv::Rect& r : parts) {
     const bool whole = std::any_of(found.begin(), found.end(), [&](const ObjectDetection& d) {
