@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing and builds (scripts/setup.sh), then the main job: a pick on a
+# Installs the Debian packages that are missing (scripts/setup.sh) and builds flexsight, then the main job: a pick on a
 # simulated bin of our own part (scripts/pick/main_job.sh: the part, its templates, the
 # bin at 1280x960, `flexsight pick`), printing the first pick and the time per stage and
 # writing out/PICKS.json and out/pick.png. Every argument goes to `flexsight pick` (e.g.
@@ -9,7 +9,10 @@
 # docs/quickstart.md: what each step writes and how long it takes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+# The packages only, and only the binary the job runs: test.sh builds the rest.
+scripts/setup.sh --packages-only
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j"$(nproc)" --target flexsight
 
 scripts/pick/main_job.sh --out out "$@"
 
