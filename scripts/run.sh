@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian packages that are missing (scripts/setup.sh) and builds flexsight, then the main job: a pick on a
-# simulated bin of our own part (scripts/pick/main_job.sh: the part, its templates, the
-# bin at 1280x960, `flexsight pick`), printing the first pick and the time per stage and
-# writing out/PICKS.json and out/pick.png. Every argument goes to `flexsight pick` (e.g.
-# --stereo-downscale 2). Then the stereo demo on the Middlebury 2014 Motorcycle pair that
-# python3-skimage ships (741x500, with ground truth): disparity, depth, confidence, the
-# point cloud out/motorcycle.ply and a picture of it, bad-N against the ground truth.
-# docs/quickstart.md: what each step writes and how long it takes.
+# Installs the Debian packages that are missing (scripts/setup.sh) and builds flexsight,
+# then the main job: a pick on a simulated bin of our own part (scripts/pick/main_job.sh:
+# the part, its templates, the bin at 1280x960, `flexsight pick`), printing the first pick
+# and the time per stage and writing out/PICKS.json and out/pick.png. Every argument goes
+# to `flexsight pick` (e.g. --stereo-downscale 2). Then the stereo demo on the Middlebury
+# 2014 Motorcycle pair that python3-skimage ships (741x500, with ground truth): disparity,
+# depth, confidence, the point cloud out/motorcycle.ply and a picture of it, bad-N against
+# the ground truth. docs/quickstart.md: what each step writes and how long it takes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # The packages only, and only the binary the job runs: test.sh builds the rest.
