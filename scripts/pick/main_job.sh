@@ -32,21 +32,22 @@ job=$out/pick_job
 mkdir -p "$job/cad"
 seconds() { /usr/bin/python3 -c 'import sys, time; print(f"{time.time() - float(sys.argv[1]):.1f}")' "$1"; }
 
-start=$(date +%s.%N)
 /usr/bin/python3 scripts/pick/demo_part.py "$job/cad/obj_0$part.stl"
-"$flexsight" pose-templates "$job/cad" -o "$job/parts.tpl" > /dev/null
-templates_s=$(seconds "$start")
-
+# The bin first: a size it refuses stops the job before the templates are made.
 start=$(date +%s.%N)
 "$flexsight" synth bin --count 1 --seed "$seed" --size "$size" --parts "$part" --cad "$job/cad" \
   -o "$job/bins" --overwrite > /dev/null
 bin_s=$(seconds "$start")
 
 start=$(date +%s.%N)
+"$flexsight" pose-templates "$job/cad" -o "$job/parts.tpl" > /dev/null
+templates_s=$(seconds "$start")
+
+start=$(date +%s.%N)
 "$flexsight" pick "$job/bins/bin000" --templates "$job/parts.tpl" --cad "$job/cad" --parts "$part" \
-  -o "$out/PICKS.json" --png "$out/pick.png" --quiet "${pick_options[@]}" > "$out/pick.md"
+  -o "$out/PICKS.json" --png "$out/pick.png" "${pick_options[@]}" > "$out/pick.md"
 pick_s=$(seconds "$start")
 
-echo "main job: templates of the part ${templates_s} s, bin ${size} ${bin_s} s, pick ${pick_s} s (process)"
+echo "main job: bin ${size} ${bin_s} s, templates of the part ${templates_s} s, pick ${pick_s} s (process)"
 /usr/bin/python3 scripts/pick/first_pick.py "$out/PICKS.json"
 echo "wrote $out/PICKS.json, $out/pick.png (the picture), $out/pick.md (every pick)"
