@@ -173,6 +173,11 @@ PickSession::PickSession(const PickSettings& settings) : impl_(std::make_unique<
 void PickSession::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
 
 void PickSession::set_pair_settings(const PickSettings& settings) {
+  check_pair_settings(settings);
+  impl_->settings = settings;
+}
+
+void PickSession::check_pair_settings(const PickSettings& settings) const {
   const PickSettings& loaded = impl_->settings;
   const SsdDetectorOptions &d = settings.detector, &l = loaded.detector;
   const BackendOptions &b = settings.backend, &lb = loaded.backend;
@@ -195,7 +200,6 @@ void PickSession::set_pair_settings(const PickSettings& settings) {
   for (const auto& [differs, option] : fixed) {
     if (differs) throw InputError(std::string("option ") + option, "is loaded once for the session and cannot change per pair");
   }
-  impl_->settings = settings;
 }
 
 cv::Mat PickSession::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {

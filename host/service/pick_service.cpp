@@ -81,8 +81,14 @@ ServiceAnswer PickService::pick_checked(const std::string& body) {
   const PickInputFiles& files = images_in_body.files();
   PickSettings settings = parser_(merge_pick_arguments(base_args_, request.option_tokens), files.calib);
   settings.quiet = true;
-  const PickInputImages images = read_pick_inputs(files, settings.detection_tile);
-  validate_inputs(images.pair.left, images.pair.right, settings.stereo);
+  session_->check_pair_settings(settings);
+  PickInputImages images;
+  try {
+    images = read_pick_inputs(files, settings.detection_tile);
+    validate_inputs(images.pair.left, images.pair.right, settings.stereo);
+  } catch (const InputError& e) {
+    throw RequestError(400, images_in_body.in_request_terms(e.what()));
+  }
 
   ServiceAnswer answer;
   auto job = [&] {

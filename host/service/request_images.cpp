@@ -30,6 +30,19 @@ RequestImages::RequestImages(const PickRequest& request) : files_(request.files)
   }
 }
 
+std::string RequestImages::in_request_terms(std::string message) const {
+  const std::pair<const std::string*, const std::string*> names[] = {
+      {&files_.left, &described_.left}, {&files_.right, &described_.right},
+      {&files_.passive_left, &described_.passive_left}};
+  for (const auto& [file, described] : names) {
+    if (file->empty() || *file == *described) continue;
+    for (std::size_t at = message.find(*file); at != std::string::npos; at = message.find(*file, at)) {
+      message.replace(at, file->size(), *described);
+    }
+  }
+  return message;
+}
+
 RequestImages::~RequestImages() {
   std::error_code ignored;
   if (!folder_.empty()) fs::remove_all(folder_, ignored);

@@ -20,6 +20,8 @@ class RequestImages {
   const PickInputFiles& files() const { return files_; }
   // The inputs as PICKS.json names them: the paths, or "body:left_png" and the like.
   const PickInputFiles& described() const { return described_; }
+  // `message` with the temporary files named as the request named them ("body:left_png").
+  std::string in_request_terms(std::string message) const;
 
  private:
   std::string folder_;  // empty when the request gave paths only
