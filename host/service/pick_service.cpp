@@ -18,6 +18,14 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// Each stage of a pick (PICKS.json's "seconds") and the pick's own time as /metrics series.
+void add_stage_seconds(const PickStageSeconds& s, LatencyMetrics& metrics) {
+  const std::pair<const char*, double> stages[] = {
+      {"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"naming", s.naming},
+      {"segmentation", s.segmentation}, {"pose", s.pose}, {"ranking", s.ranking}, {"pick", s.total()}};
+  for (const auto& [stage, seconds] : stages) metrics.add_seconds(stage, seconds);
+}
+
 }  // namespace
 
 std::string error_json(int status, const std::string& message) {
@@ -99,12 +107,7 @@ ServiceAnswer PickService::pick_checked(const std::string& body) {
                                                files.calib, settings.model, settings.templates, settings.cad,
                                                images_in_body.described().passive_left, settings.detector.parts.obj_ids};
       answer.body = pick_json(result, described);
-      const PickStageSeconds& s = result.seconds;
-      const std::pair<const char*, double> stages[] = {{"stereo", s.stereo},   {"depth", s.depth},
-                                                       {"detection", s.detection}, {"naming", s.naming},
-                                                       {"segmentation", s.segmentation}, {"pose", s.pose},
-                                                       {"ranking", s.ranking},  {"pick", s.total()}};
-      for (const auto& [stage, seconds] : stages) metrics_.add_seconds(stage, seconds);
+      add_stage_seconds(result.seconds, metrics_);
     } catch (const InputError& e) {
       answer = {400, error_json(400, e.what())};
     } catch (const std::exception& e) {

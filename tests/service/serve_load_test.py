@@ -96,6 +96,15 @@ def main():
     started = time.time()
     work = tempfile.mkdtemp(prefix="serve_load_")
     try:
+        # Bad options: one line naming the option, exit 1, before anything loads.
+        for bad, named in ((["--port", "http"], "option --port"), (["--queue", "0"], "option --queue"),
+                           (["--max-body", "1X"], "option --max-body"), (["--colour", "red"], "option --colour"),
+                           (["--templates", os.path.join(work, "none.tpl")], "none.tpl")):
+            argv = [args.flexsight, "serve"] + (bad if bad[0] == "--templates" else ["--templates", "t.tpl"] + bad)
+            r = subprocess.run(argv, capture_output=True, text=True, timeout=60)
+            lines = r.stderr.strip().splitlines()
+            check(r.returncode == 1 and len(lines) == 1 and named in lines[0] and not r.stdout,
+                  f"serve {' '.join(bad)}: exit {r.returncode}, {r.stderr!r}")
         templates = os.path.join(work, "parts.tpl")
         run([args.flexsight, "pose-templates", args.cad, "--views", "8", "--threads", "2", "-o", templates])
         run([args.flexsight, "synth", "bin", "--count", "1", "--seed", "5", "--size", "320x240", "--parts", "3..3",
