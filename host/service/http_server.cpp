@@ -40,6 +40,13 @@ struct HttpServer::Impl {
 
   Impl(PickService& s, std::function<void(const std::string&)> l) : service(s), log(std::move(l)) {
     server.set_payload_max_length(service.limits().max_body);
+    // SO_REUSEADDR alone: a restart may take its port back from TIME_WAIT, but a port
+    // another process listens on is refused (httplib's default, SO_REUSEPORT, would let a
+    // second serve share the port and take half of the requests).
+    server.set_socket_options([](socket_t sock) {
+      int yes = 1;
+      ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    });
     // One thread per waiting request, the running one and a few for /health and /metrics.
     const std::size_t threads = service.limits().queue + 4;
     server.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
@@ -68,7 +75,7 @@ struct HttpServer::Impl {
       if (res.status == 413) {
         message = "body: larger than --max-body " + std::to_string(service.limits().max_body) + " bytes";
       } else if (res.status == 404) {
-        message = "path " + req.path + ": not found (GET /health, POST /pick, GET /metrics)";
+        message = req.method + " " + req.path + ": not found (GET /health, POST /pick, GET /metrics)";
       } else if (res.status == 405) {
         message = "method " + req.method + ": not allowed on " + req.path;
       } else {

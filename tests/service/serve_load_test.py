@@ -168,6 +168,18 @@ def main():
         half_body_then_hang_up(port)
         whole_pick_then_hang_up(port, good)
 
+        # A second server on the same port is refused (no port sharing), after loading.
+        r2 = subprocess.run([args.flexsight, "serve", "--templates", templates, "--cad", args.cad, "--port", str(port)],
+                            capture_output=True, text=True, timeout=120)
+        check(r2.returncode == 1 and "option --port: cannot listen" in r2.stderr, f"second serve: {r2.stderr!r}")
+        r = requests.get(url + "/pick", timeout=10)
+        check(r.status_code == 404 and "GET /pick: not found" in r.json()["error"], f"GET /pick: {r.status_code} {r.text}")
+        with open(left, "rb") as f:
+            cut = base64.b64encode(f.read()[:80]).decode()
+        cut_body = {k: v for k, v in good.items() if k != "left"}
+        cut_body["left_png"] = cut
+        r = requests.post(url + "/pick", json=cut_body, timeout=30)
+        check(r.status_code == 400 and r.json()["error"].startswith("body:left_png: "), f"a cut PNG: {r.text}")
         health = requests.get(url + "/health", timeout=10)
         check(health.status_code == 200 and health.json()["status"] == "ok" and health.json()["models_loaded"],
               f"/health after the load: {health.status_code} {health.text}")
@@ -192,7 +204,8 @@ def main():
 
         metrics = requests.get(url + "/metrics", timeout=10).json()
         # At least: the half body that was hung up on may be counted as a 400 too.
-        check(metrics["answers"].get("400", 0) >= len(malformed), f"/metrics 400s: {metrics['answers']}")
+        check(metrics["answers"].get("400", 0) >= len(malformed) + 1, f"/metrics 400s: {metrics['answers']}")
+        check(metrics["answers"].get("404", 0) == 1, f"/metrics 404s: {metrics['answers']}")
         check(metrics["answers"].get("413", 0) == 1, f"/metrics 413s: {metrics['answers']}")
         check(metrics["requests"] >= len(answers) + 2, f"/metrics requests {metrics['requests']}")
         for series in ("total", "queue_wait", "stereo", "detection", "pose"):
