@@ -10,9 +10,9 @@ packages=(
   build-essential cmake pkg-config git
   libopencv-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-  libembree-dev nlohmann-json3-dev libceres-dev libnanoflann-dev libbullet-dev
+  libembree-dev nlohmann-json3-dev libceres-dev libnanoflann-dev libbullet-dev libcpp-httplib-dev
   python3 python3-venv python3-numpy python3-pil python3-skimage python3-meshio python3-matplotlib
-  python3-torch python3-torchvision python3-opencv python3-flatbuffers python3-onnx
+  python3-torch python3-torchvision python3-opencv python3-flatbuffers python3-onnx python3-requests
   clang libclang-rt-14-dev libomp-dev
 )
 missing=()

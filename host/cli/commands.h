@@ -18,6 +18,7 @@ int run_pose_templates_command(std::vector<std::string> args);
 int run_pose_command(std::vector<std::string> args);
 int run_pick_command(std::vector<std::string> args);
 int run_eval_pick_command(std::vector<std::string> args);
+int run_serve_command(std::vector<std::string> args);
 int run_sensor_plan_command(std::vector<std::string> args);
 
 }  // namespace flexsight

@@ -25,6 +25,7 @@ void print_usage() {
                "  pose-templates CAD_DIR -o TEMPLATES       edge templates of the parts, for pose\n"
                "  pick LEFT RIGHT --calib C --templates T   stereo, detection, poses: the parts ranked for a robot\n"
                "  eval-pick BINS_DIR --out DIR --templates T  pick on simulated bins, scored against their truth\n"
+               "  serve --templates T [--port P] [options]  pick as a warm HTTP service (docs/serve.md)\n"
                "  sensor-plan [options] [-o DIR]            camera/projector placement: coverage, depth resolution\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     if (command == "pose") return flexsight::run_pose_command(args);
     if (command == "pick") return flexsight::run_pick_command(args);
     if (command == "eval-pick") return flexsight::run_eval_pick_command(args);
+    if (command == "serve") return flexsight::run_serve_command(args);
     if (command == "pose-templates") return flexsight::run_pose_templates_command(args);
     if (command == "sensor-plan") return flexsight::run_sensor_plan_command(args);
     if (command == "--help" || command == "-h" || command == "help") {

@@ -13,7 +13,6 @@
 #include "host/cli/backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/pick_options.h"
-#include "host/cli/tile_option.h"
 #include "host/detect/detector_model.h"
 #include "host/io/atomic_file.h"
 #include "host/io/calibration.h"
@@ -21,6 +20,7 @@
 #include "host/io/input_error.h"
 #include "host/io/output_path.h"
 #include "host/io/middeval3_files.h"
+#include "host/pick/pick_inputs.h"
 #include "host/pick/pick_outputs.h"
 #include "host/pick/pick_session.h"
 #include "host/pose/pose_models.h"
@@ -47,14 +47,9 @@ void print_help() {
             << pick_options_help();
 }
 
-struct PickInputs {
-  std::string left, right, calib;
-  std::string passive_left;  // empty: none
-};
-
-PickInputs resolve_pick_inputs(const std::vector<std::string>& positional, const std::string& calib,
-                               const std::string& passive_left) {
-  PickInputs inputs;
+PickInputFiles resolve_pick_inputs(const std::vector<std::string>& positional, const std::string& calib,
+                                   const std::string& passive_left) {
+  PickInputFiles inputs;
   inputs.calib = calib;
   inputs.passive_left = passive_left;
   if (positional.size() == 2) {
@@ -104,30 +99,21 @@ int run_pick_command(std::vector<std::string> args) {
   const std::string png = take_option(args, "--png");
   const std::string passive_left = take_option(args, "--passive-left");
   reject_unknown_options(args);
-  const PickInputs inputs = resolve_pick_inputs(args, calib_option, passive_left);
+  const PickInputFiles inputs = resolve_pick_inputs(args, calib_option, passive_left);
   check_output_file(output);
   check_output_file(png);
 
   // Every input is read and checked before the work: the pair, the calibration against
   // it, the stereo parameters, then the detector, templates and CAD models.
-  const StereoPair pair = load_stereo_pair(inputs.left, inputs.right);
-  const StereoCamera rig = read_stereo_camera(inputs.calib).resized_to(pair.left.cols, pair.left.rows);
-  cv::Mat passive;
-  if (!inputs.passive_left.empty()) {
-    passive = load_rgb8(inputs.passive_left);
-    if (passive.size() != pair.left.size()) {
-      throw InputError(inputs.passive_left, "is " + std::to_string(passive.cols) + "x" + std::to_string(passive.rows) +
-                                                ", the pair " + std::to_string(pair.left.cols) + "x" +
-                                                std::to_string(pair.left.rows) + ": not the left view without the pattern");
-    }
-  }
-  if (settings.detection_tile > 0) check_tile_fits(settings.detection_tile, pair.left.size(), inputs.left);
+  const PickInputImages images = read_pick_inputs(inputs, settings.detection_tile);
+  const StereoPair& pair = images.pair;
+  const cv::Mat& passive = images.passive;
   settings.stereo.ndisp = pick_ndisp(options, inputs.calib);
   validate_inputs(pair.left, pair.right, settings.stereo);
   PickSession session(settings);
   if (!settings.quiet) std::cerr << "pick: " << pair.left.cols << "x" << pair.left.rows << ", ndisp " << settings.stereo.ndisp << "\n";
 
-  const PickResult result = session.pick(pair.left, pair.right, rig, passive);
+  const PickResult result = session.pick(pair.left, pair.right, images.rig, passive);
   if (!output.empty()) {
     const std::string json =
         pick_json(result, {inputs.left, inputs.right, inputs.calib, settings.model, settings.templates, settings.cad,

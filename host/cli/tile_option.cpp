@@ -27,12 +27,4 @@ std::string tile_option_help(int column) {
          "pick does; 0 or off: the whole image (default)\n";
 }
 
-void check_tile_fits(int tile, cv::Size image, const std::string& image_name) {
-  if (tile_fits(image, tile)) return;
-  throw InputError("option --tile", std::to_string(tile) + " pixels is larger than " + image_name + " (" +
-                                        std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                        "); give at most " + std::to_string(std::min(image.width, image.height)) +
-                                        " or 0 for the whole image");
-}
-
 }  // namespace flexsight

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "host/detect/tiled_detection.h"  // check_tile_fits, beside the option
+
 namespace flexsight {
 
 // Removes --tile from `args`: 0 or "off" (the whole image, the default) or N in 64..8192.
@@ -14,9 +16,5 @@ int take_tile_option(std::vector<std::string>& args);
 
 // The help lines of --tile (two-column layout starting at `column`).
 std::string tile_option_help(int column);
-
-// Throws InputError naming --tile when tiles of `tile` pixels do not fit in `image`, the
-// picture read from `image_name` (tile 0 always fits).
-void check_tile_fits(int tile, cv::Size image, const std::string& image_name);
 
 }  // namespace flexsight

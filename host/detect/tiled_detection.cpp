@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "host/io/input_error.h"
 
 namespace flexsight {
 namespace {
@@ -108,6 +111,14 @@ std::vector<ObjectDetection> detect_in_tiles(
     if (!suppressed) kept.push_back(d);
   }
   return kept;
+}
+
+void check_tile_fits(int tile, cv::Size image, const std::string& image_name) {
+  if (tile_fits(image, tile)) return;
+  throw InputError("option --tile", std::to_string(tile) + " pixels is larger than " + image_name + " (" +
+                                        std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                        "); give at most " + std::to_string(std::min(image.width, image.height)) +
+                                        " or 0 for the whole image");
 }
 
 }  // namespace flexsight

@@ -11,6 +11,7 @@
 //                                image, plan, 0.6f);
 #include <functional>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "host/detect/ssd_detector.h"
@@ -47,6 +48,10 @@ TilingPlan fixed_tiling(int tile);
 // Whether tiles of `tile` pixels fit in `image` (neither side shorter than a tile): a
 // larger tile would only be the image clipped, which the whole-image detection is.
 bool tile_fits(cv::Size image, int tile);
+
+// Throws InputError naming --tile when tiles of `tile` pixels do not fit in `image`, the
+// picture read from `image_name` (tile 0 always fits).
+void check_tile_fits(int tile, cv::Size image, const std::string& image_name);
 
 // The tiles of `plan` over `image` (over plan.region within it, when given), row by row,
 // spread evenly with neighbours at most plan.stride apart; the last row and column end

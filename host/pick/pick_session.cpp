@@ -172,6 +172,36 @@ PickSession::PickSession(const PickSettings& settings) : impl_(std::make_unique<
 
 void PickSession::set_ndisp(int ndisp) { impl_->settings.stereo.ndisp = ndisp; }
 
+void PickSession::set_pair_settings(const PickSettings& settings) {
+  check_pair_settings(settings);
+  impl_->settings = settings;
+}
+
+void PickSession::check_pair_settings(const PickSettings& settings) const {
+  const PickSettings& loaded = impl_->settings;
+  const SsdDetectorOptions &d = settings.detector, &l = loaded.detector;
+  const BackendOptions &b = settings.backend, &lb = loaded.backend;
+  const std::pair<bool, const char*> fixed[] = {
+      {settings.model != loaded.model, "--model"},
+      {settings.templates != loaded.templates, "--templates"},
+      {settings.cad != loaded.cad, "--cad"},
+      {settings.namer != loaded.namer, "--namer"},
+      {d.score_threshold != l.score_threshold, "--score"},
+      {d.parts.obj_ids != l.parts.obj_ids, "--parts"},
+      {d.iou_threshold != l.iou_threshold || d.top_k_per_class != l.top_k_per_class ||
+           d.max_detections != l.max_detections || d.dnn_target != l.dnn_target,
+       "--model"},
+      {b.kind != lb.kind, "--device"},
+      {b.cl_platform != lb.cl_platform, "--cl-platform"},
+      {b.cl_device != lb.cl_device, "--cl-device"},
+      {b.cl_max_memory != lb.cl_max_memory, "--cl-max-memory"},
+      {b.cl_build_options != lb.cl_build_options, "--cl-build-options"},
+  };
+  for (const auto& [differs, option] : fixed) {
+    if (differs) throw InputError(std::string("option ") + option, "is loaded once for the session and cannot change per pair");
+  }
+}
+
 cv::Mat PickSession::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
   return disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, impl_->settings.stereo,
                             impl_->settings.stereo_downscale, ProgressCallback(), nullptr);

@@ -112,6 +112,13 @@ class PickSession {
   // The matcher's disparity range for the next pairs (each bin's calib.txt may give its own).
   void set_ndisp(int ndisp);
 
+  // The settings of the next pairs (a service whose requests carry pick's options): what
+  // was loaded at construction stays (detector and its options, templates, CAD folder,
+  // namer, backend); InputError naming the option when `settings` asks for another.
+  void set_pair_settings(const PickSettings& settings);
+  // set_pair_settings' check alone (a service refuses a request before it queues it).
+  void check_pair_settings(const PickSettings& settings) const;
+
   // The matcher alone, with pick's settings (eval-pick's pair without the pattern).
   cv::Mat disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8);
 
