@@ -26,12 +26,14 @@ struct CandidateCues {
 };
 
 // How the cues add up to the cheap score (each cue lies in 0..1; the height is divided
-// by the highest candidate's of the bin). Chosen on the development bins (docs/pick.md).
+// by the highest candidate's of the bin). Chosen on the development bins (docs/pick.md,
+// "The first pick first"): the height counts half, since boxes on the bin's rim are the
+// highest of all; the namer's weight was not measured.
 struct CandidateOrderWeights {
-  double height = 1.0;
+  double height = 0.5;
   double free_space = 1.0;
   double visible = 1.0;
-  double detection = 0.5;
+  double detection = 1.0;
   double naming = 0.5;  // only with a namer
 };
 
