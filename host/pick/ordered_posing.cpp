@@ -100,8 +100,17 @@ int best_proposal(const OrderedCandidate& candidate, const std::vector<PickCandi
   return best;
 }
 
-// What the posing threads share: which candidates are done, and the answer once decided.
-struct PosingProgress {
+// What the posing threads share: each proposal's pose, which candidates are done, and the
+// answer once decided.
+struct PosingState {
+  std::vector<OrderedCandidate> order;          // the candidates in cheap order
+  std::vector<std::pair<int, int>> items;       // the work: (candidate, proposal), in cheap order
+  std::vector<PickCandidate> results;           // per proposal
+  std::vector<char> fitted;                     // per proposal: a template fit it
+  std::vector<double> began, ended;             // per item, seconds from the pick's start; -1: not taken
+  std::vector<std::string> rejection;           // per candidate, once done
+  std::vector<cv::Mat> depth;                   // per candidate, while it is posed
+  std::unique_ptr<std::once_flag[]> depth_once;
   std::mutex mutex;
   std::vector<int> remaining;  // proposals of each candidate not yet posed
   std::vector<char> accepted;  // of the done candidates
@@ -109,17 +118,73 @@ struct PosingProgress {
   std::atomic<int> answer{-1};
   double answer_seconds = 0.0;
 
-  // Candidate `k` is done: moves the frontier over the rejected ones; the answer is the
-  // first accepted one the frontier reaches.
-  void finish(int k, bool is_accepted, double seconds) {
-    accepted[k] = is_accepted;
-    while (frontier < static_cast<int>(remaining.size()) && remaining[frontier] == 0 && !accepted[frontier]) ++frontier;
-    if (answer < 0 && frontier < static_cast<int>(remaining.size()) && remaining[frontier] == 0) {
+  PosingState(std::vector<OrderedCandidate> ordered, std::size_t proposals)
+      : order(std::move(ordered)),
+        results(proposals),
+        fitted(proposals, 0),
+        rejection(order.size()),
+        depth(order.size()),
+        depth_once(std::make_unique<std::once_flag[]>(order.size())),
+        accepted(order.size(), 0) {
+    for (int k = 0; k < static_cast<int>(order.size()); ++k) {
+      for (int i : order[k].proposals) items.emplace_back(k, i);
+      remaining.push_back(static_cast<int>(order[k].proposals.size()));
+    }
+    began.assign(items.size(), -1.0);
+    ended.assign(items.size(), -1.0);
+  }
+
+  // Candidate `k` is done (under `mutex`): moves the frontier over the rejected ones; the
+  // answer is the first accepted one the frontier reaches.
+  void finish(int k, const AcceptanceRule& rule, double seconds) {
+    const int best = best_proposal(order[k], results, fitted);
+    rejection[k] = best < 0 ? "no pose" : acceptance_failure(results[best], rule);
+    accepted[k] = rejection[k].empty();
+    depth[k].release();
+    while (frontier < static_cast<int>(order.size()) && remaining[frontier] == 0 && !accepted[frontier]) ++frontier;
+    if (answer < 0 && frontier < static_cast<int>(order.size()) && remaining[frontier] == 0) {
       answer_seconds = seconds;
       answer = frontier;
     }
   }
 };
+
+// Poses the items in cheap order on `threads` threads until the mode says stop.
+void pose_items(PosingState& state, const PosingScene& scene, const std::vector<NamedProposal>& proposals,
+                const PoseModels& models, const PosingOptions& options) {
+  const auto seconds_now = [&] { return std::chrono::duration<double>(Clock::now() - options.start).count(); };
+  std::atomic<int> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr failure;
+#pragma omp parallel num_threads(std::max(1, options.threads))
+  {
+    PoseEstimator estimator(options.pose);
+    while (!failed) {
+      const int item = next++;
+      if (item >= static_cast<int>(state.items.size())) break;
+      const int k = state.items[item].first, i = state.items[item].second;
+      const int answer = state.answer;
+      if (answer >= 0 && options.mode == PickMode::FirstPick && k > answer) break;
+      if (answer >= 0 && options.mode == PickMode::Budget && seconds_now() > options.budget_seconds) break;
+      state.began[item] = seconds_now();
+      try {
+        std::call_once(state.depth_once[k], [&] {
+          state.depth[k] = options.depth_for_candidate ? options.depth_for_candidate(state.order[k].box, scene.depth_mm)
+                                                       : scene.depth_mm;
+        });
+        state.fitted[i] = pose_proposal(estimator, scene, state.depth[k], proposals[i], i, models, options, state.results[i]);
+        const std::lock_guard<std::mutex> lock(state.mutex);
+        state.ended[item] = seconds_now();
+        if (--state.remaining[k] == 0) state.finish(k, options.acceptance, state.ended[item]);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(state.mutex);
+        if (!failure) failure = std::current_exception();
+        failed = true;
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+}
 
 }  // namespace
 
@@ -133,87 +198,32 @@ const char* pick_mode_name(PickMode mode) {
 
 PosingOutcome pose_in_cheap_order(const PosingScene& scene, const std::vector<NamedProposal>& proposals,
                                   const PoseModels& models, const PosingOptions& options) {
+  PosingState state(ordered_candidates(scene, proposals, options.weights), proposals.size());
+  pose_items(state, scene, proposals, models, options);
+
   PosingOutcome outcome;
-  const std::vector<OrderedCandidate> order = ordered_candidates(scene, proposals, options.weights);
-  // The work in cheap order: (candidate, proposal) pairs.
-  std::vector<std::pair<int, int>> items;
-  for (int k = 0; k < static_cast<int>(order.size()); ++k) {
-    for (int i : order[k].proposals) items.emplace_back(k, i);
-  }
-  const auto seconds_now = [&] { return std::chrono::duration<double>(Clock::now() - options.start).count(); };
-
-  std::vector<PickCandidate> results(proposals.size());
-  std::vector<char> fitted(proposals.size(), 0);
-  std::vector<double> began(items.size(), -1.0), ended(items.size(), -1.0);
-  std::vector<std::string> rejection(order.size());
-  std::vector<cv::Mat> candidate_depth(order.size());
-  const auto depth_once = std::make_unique<std::once_flag[]>(order.size());
-  PosingProgress progress;
-  progress.remaining.resize(order.size());
-  progress.accepted.assign(order.size(), 0);
-  for (int k = 0; k < static_cast<int>(order.size()); ++k) progress.remaining[k] = static_cast<int>(order[k].proposals.size());
-
-  std::atomic<int> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr failure;
-#pragma omp parallel num_threads(std::max(1, options.threads))
-  {
-    PoseEstimator estimator(options.pose);
-    while (!failed) {
-      const int item = next++;
-      if (item >= static_cast<int>(items.size())) break;
-      const auto [k, i] = items[item];
-      const int answer = progress.answer;
-      if (answer >= 0 && options.mode == PickMode::FirstPick && k > answer) break;
-      if (answer >= 0 && options.mode == PickMode::Budget && seconds_now() > options.budget_seconds) break;
-      began[item] = seconds_now();
-      try {
-        std::call_once(depth_once[k], [&] {
-          candidate_depth[k] = options.depth_for_candidate ? options.depth_for_candidate(order[k].box, scene.depth_mm)
-                                                           : scene.depth_mm;
-        });
-        fitted[i] = pose_proposal(estimator, scene, candidate_depth[k], proposals[i], i, models, options, results[i]);
-        const std::lock_guard<std::mutex> lock(progress.mutex);
-        ended[item] = seconds_now();
-        if (--progress.remaining[k] == 0) {
-          const int best = best_proposal(order[k], results, fitted);
-          rejection[k] = best < 0 ? "no pose" : acceptance_failure(results[best], options.acceptance);
-          progress.finish(k, rejection[k].empty(), ended[item]);
-          candidate_depth[k].release();
-        }
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(progress.mutex);
-        if (!failure) failure = std::current_exception();
-        failed = true;
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
-
-  outcome.first_pick = progress.answer;
+  outcome.first_pick = state.answer;
   const bool stop_at_answer = options.mode == PickMode::FirstPick && outcome.first_pick >= 0;
-  for (int k = 0; k < static_cast<int>(order.size()); ++k) {
+  std::vector<char> kept(proposals.size(), 0);  // the proposals of the candidates in the result
+  for (int k = 0; k < static_cast<int>(state.order.size()); ++k) {
     CandidateOutcome c;
-    c.candidate = order[k];
-    c.posed = progress.remaining[k] == 0 && (!stop_at_answer || k <= outcome.first_pick);
+    c.candidate = state.order[k];
+    c.posed = state.remaining[k] == 0 && (!stop_at_answer || k <= outcome.first_pick);
     if (c.posed) {
-      c.best = best_proposal(order[k], results, fitted);
-      c.rejection = rejection[k];
+      c.best = best_proposal(state.order[k], state.results, state.fitted);
+      c.rejection = state.rejection[k];
+      for (int i : c.candidate.proposals) kept[i] = 1;
     }
     outcome.candidates.push_back(std::move(c));
   }
-  for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
-    if (!fitted[i]) continue;
-    const auto in = std::find_if(outcome.candidates.begin(), outcome.candidates.end(), [&](const CandidateOutcome& c) {
-      return std::find(c.candidate.proposals.begin(), c.candidate.proposals.end(), i) != c.candidate.proposals.end();
-    });
-    if (in == outcome.candidates.end() || !in->posed) continue;
-    outcome.posed.push_back(results[i]);
+  for (std::size_t i = 0; i < proposals.size(); ++i) {
+    if (kept[i] && state.fitted[i]) outcome.posed.push_back(state.results[i]);
   }
   // The first pick is ready when it is decided and every pose begun before has ended.
-  double ready = outcome.first_pick >= 0 ? progress.answer_seconds : 0.0;
-  for (std::size_t j = 0; j < items.size(); ++j) {
-    if (began[j] >= 0.0 && (outcome.first_pick < 0 || began[j] < progress.answer_seconds)) ready = std::max(ready, ended[j]);
+  double ready = outcome.first_pick >= 0 ? state.answer_seconds : 0.0;
+  for (std::size_t j = 0; j < state.items.size(); ++j) {
+    const bool before = outcome.first_pick < 0 || state.began[j] < state.answer_seconds;
+    if (state.began[j] >= 0.0 && before) ready = std::max(ready, state.ended[j]);
   }
   outcome.seconds_to_first_pick = ready;
   return outcome;
