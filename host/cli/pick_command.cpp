@@ -44,7 +44,7 @@ void print_help() {
                "  --passive-left P   the left view with the projector off (the same size): detection\n"
                "                     and the pose's edges use it; the dots hide parts from the\n"
                "                     detector and are edges themselves\n"
-            << pick_options_help();
+            << pick_mode_options_help() << pick_options_help();
 }
 
 PickInputFiles resolve_pick_inputs(const std::vector<std::string>& positional, const std::string& calib,
@@ -74,6 +74,12 @@ PickInputFiles resolve_pick_inputs(const std::vector<std::string>& positional, c
 }
 
 void print_table(const PickResult& result) {
+  if (result.has_first_pick) {
+    const PickCandidate& c = result.first_pick;
+    std::printf("first pick (mode %s): obj %d at %.1f %.1f %.1f mm, %s, after %.3f s\n\n", pick_mode_name(result.mode),
+                c.obj_id, c.pose.t.x(), c.pose.t.y(), c.pose.t.z(),
+                result.first_pick_accepted ? "accepted" : "none accepted, the best-ranked", result.seconds_to_first_pick);
+  }
   std::printf("| rank | obj | pick score | pose score | visible | height mm | x mm | y mm | z mm |\n"
               "|---|---|---|---|---|---|---|---|---|\n");
   int rank = 1;
@@ -94,6 +100,7 @@ int run_pick_command(std::vector<std::string> args) {
   if (auto code = usage_exit_code(args, print_help)) return *code;
   PickOptions options = take_pick_options(args);
   PickSettings& settings = options.settings;
+  take_pick_mode_options(args, settings);
   const std::string calib_option = take_option(args, "--calib");
   const std::string output = take_option(args, "-o");
   const std::string png = take_option(args, "--png");

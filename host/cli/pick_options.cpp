@@ -1,6 +1,7 @@
 #include "host/cli/pick_options.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 #include "host/cli/arguments.h"
@@ -79,6 +80,35 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   }
   if (settings.cad.empty()) settings.cad = default_cad_dir();
   return options;
+}
+
+void take_pick_mode_options(std::vector<std::string>& args, PickSettings& settings) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    // A flag: "--all=x", or a word after it that names no input, is a value given to it.
+    const bool inline_value = args[i].rfind("--all=", 0) == 0;
+    const bool next_is_value = args[i] == "--all" && i + 1 < args.size() && args[i + 1].rfind("-", 0) != 0 &&
+                               !std::filesystem::exists(args[i + 1]);
+    if (inline_value || next_is_value) {
+      throw InputError("option --all", "takes no value, got '" + (inline_value ? args[i].substr(6) : args[i + 1]) + "'");
+    }
+  }
+  const bool all = take_flag(args, "--all");
+  const std::string budget = take_option(args, "--budget-ms");
+  if (all && !budget.empty()) throw InputError("option --budget-ms", "cannot be given with --all (which poses everything)");
+  if (all) settings.mode = PickMode::All;
+  if (!budget.empty()) {
+    settings.mode = PickMode::Budget;
+    settings.budget_ms = static_cast<int>(parse_whole_number("--budget-ms", budget, 0, 3600000));
+  }
+}
+
+std::string pick_mode_options_help() {
+  return "  --all              pose every proposal and rank them all (default: answer at the\n"
+         "                     first candidate, in cheap order, whose pose passes the\n"
+         "                     acceptance rule; docs/pick.md, \"The first pick first\")\n"
+         "  --budget-ms N      after the first pick, go on posing in cheap order until N ms\n"
+         "                     of the pick (stereo included) have passed, then rank what was\n"
+         "                     posed (0..3600000)\n";
 }
 
 std::string pick_options_help() {

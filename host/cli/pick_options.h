@@ -18,6 +18,12 @@ struct PickOptions {
 // missing value (--templates is required).
 PickOptions take_pick_options(std::vector<std::string>& args);
 
+// pick's --all and --budget-ms (not eval-pick's: it poses every proposal and times the
+// first pick on the way) into `settings.mode`; InputError naming the option for a value
+// given to --all, a budget that is not a whole number of milliseconds, or both at once.
+void take_pick_mode_options(std::vector<std::string>& args, PickSettings& settings);
+std::string pick_mode_options_help();
+
 // The shared options' help lines.
 std::string pick_options_help();
 

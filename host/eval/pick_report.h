@@ -21,6 +21,8 @@ struct PickReport {
   double detection_coco_ap = 0.0;  // COCO AP@[.5:.95]
   PickStageSeconds mean_seconds;   // per stage, mean over bins
   double seconds_per_bin = 0.0;    // mean pick time (stereo to ranking)
+  double first_pick_correct = 0.0;     // share of bins whose first pick is right
+  double seconds_to_first_pick = 0.0;  // mean over bins
 };
 
 // Fills the sums and means from report.bins (at least one).

@@ -31,6 +31,19 @@ Pose truth_pose(const PartAnnotation& part) {
   return pose;
 }
 
+// The ADD(-S) / d of `pick` to the nearest ground-truth part of its object: NaN when
+// the bin holds none (or no model scores it).
+double error_ratio(const PickCandidate& pick, const BopImageRecord& record, const PoseScoringModels& models) {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  const auto model = models.models.find(pick.obj_id);
+  for (const PartAnnotation& part : record.parts) {
+    if (part.obj_id != pick.obj_id || model == models.models.end()) continue;
+    const double ratio = add_or_adds_error(*model->second, pick.pose, truth_pose(part)) / model->second->diameter();
+    if (!(ratio >= best)) best = ratio;
+  }
+  return best;
+}
+
 }  // namespace
 
 std::set<int> bin_obj_ids(const std::vector<std::string>& bins) {
@@ -82,15 +95,17 @@ BinPickScore score_pick_on_bin(const std::string& bin, const PickResult& result,
 
   // The first-ranked part: right when it lies within 0.1 d of some part of its object.
   if (!result.picks.empty()) {
-    const PickCandidate& top = result.picks.front();
-    score.top1_obj_id = top.obj_id;
-    const auto model = models.models.find(top.obj_id);
-    for (const PartAnnotation& part : record.parts) {
-      if (part.obj_id != top.obj_id || model == models.models.end()) continue;
-      const double ratio = add_or_adds_error(*model->second, top.pose, truth_pose(part)) / model->second->diameter();
-      if (!(ratio >= score.top1_error_ratio)) score.top1_error_ratio = ratio;
-    }
+    score.top1_obj_id = result.picks.front().obj_id;
+    score.top1_error_ratio = error_ratio(result.picks.front(), record, models);
     score.top1_correct = score.top1_error_ratio < kAddThreshold;
+  }
+  // The first pick, the same way.
+  score.seconds_to_first_pick = result.seconds_to_first_pick;
+  if (result.has_first_pick) {
+    score.first_pick_obj_id = result.first_pick.obj_id;
+    score.first_pick_accepted = result.first_pick_accepted;
+    score.first_pick_error_ratio = error_ratio(result.first_pick, record, models);
+    score.first_pick_correct = score.first_pick_error_ratio < kAddThreshold;
   }
 
   for (const PartAnnotation& part : record.parts) {

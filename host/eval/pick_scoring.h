@@ -23,6 +23,13 @@ struct BinPickScore {
   bool top1_correct = false;     // the first-ranked part is posed within ADD(-S) 0.1 d
   int top1_obj_id = 0;           // 0 without any pick
   double top1_error_ratio = std::numeric_limits<double>::quiet_NaN();  // its ADD(-S) / d
+  // The first pick (pick's default mode: the first candidate in cheap order that passes
+  // the acceptance rule, else the best-ranked), scored as the top pick is.
+  bool first_pick_correct = false;
+  bool first_pick_accepted = false;
+  int first_pick_obj_id = 0;  // 0 without any pick
+  double first_pick_error_ratio = std::numeric_limits<double>::quiet_NaN();
+  double seconds_to_first_pick = std::numeric_limits<double>::quiet_NaN();
   double bad2_pattern = std::numeric_limits<double>::quiet_NaN();     // %, all GT pixels
   double bad2_no_pattern = std::numeric_limits<double>::quiet_NaN();  // NaN: not run
   PickStageSeconds seconds;

@@ -1,5 +1,7 @@
 #include "host/pick/pick_outputs.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <utility>
 #include <opencv2/imgproc.hpp>
@@ -45,6 +47,71 @@ Json depth_proposals_json(const DepthProposals& depth, double seconds) {
           {"regions", regions},
           {"proposals", depth.boxes.size()},
           {"seconds", seconds}};
+}
+
+// How far pick posed the bin: each candidate in cheap order with its cues, whether it was
+// posed and how its best pose fared against the acceptance rule.
+Json candidates_json(const PosingOutcome& posing, const std::vector<PickCandidate>& posed) {
+  Json candidates = Json::array();
+  int order = 1;
+  for (const CandidateOutcome& c : posing.candidates) {
+    const CandidateCues& q = c.candidate.cues;
+    Json cues = {{"height_mm", q.height_mm}, {"free_space", q.free_space}, {"visible_estimate", q.visible_estimate},
+                 {"detection_score", q.detection_score}};
+    if (q.naming_score >= 0.0) cues["naming_score"] = q.naming_score;
+    const cv::Rect& b = c.candidate.box;
+    Json entry = {{"order", order++},
+                  {"box", {b.x, b.y, b.width, b.height}},
+                  {"proposals", c.candidate.proposals.size()},
+                  {"cheap_score", c.candidate.cheap_score},
+                  {"cues", cues},
+                  {"posed", c.posed}};
+    if (c.posed) {
+      const auto best = std::find_if(posed.begin(), posed.end(),
+                                     [&](const PickCandidate& p) { return p.proposal_index == c.best; });
+      entry["best"] = nullptr;
+      if (best != posed.end()) {
+        const auto [R, t] = pose_json(best->pose);
+        entry["best"] = {{"obj_id", best->obj_id},         {"pose_score", best->pose_score},
+                         {"depth_fit", best->depth_fit},   {"visible_fraction", best->visible_fraction},
+                         {"pick_score", best->pick_score}, {"R", R},
+                         {"t_mm", t}};
+      }
+      entry["accepted"] = c.rejection.empty();
+      if (!c.rejection.empty()) entry["rejected"] = c.rejection;
+    }
+    candidates.push_back(entry);
+  }
+  return candidates;
+}
+
+// The answer for the robot and why it was taken.
+Json first_pick_json(const PickResult& result, const AcceptanceRule& rule) {
+  if (!result.has_first_pick) return nullptr;
+  const PickCandidate& c = result.first_pick;
+  const auto [R, t] = pose_json(c.pose);
+  char why[200];
+  if (result.first_pick_accepted) {
+    std::snprintf(why, sizeof why, "accepted: pose_score %.3f >= %.3f, depth_fit %.3f >= %.3f, visible_fraction %.3f >= %.3f",
+                  c.pose_score, rule.min_pose_score, c.depth_fit, rule.min_depth_fit, c.visible_fraction,
+                  rule.min_visible_fraction);
+  } else {
+    std::snprintf(why, sizeof why, "no candidate passed the acceptance rule: every proposal posed, the best-ranked taken");
+  }
+  return {{"accepted", result.first_pick_accepted},
+          {"why", why},
+          {"candidate", result.posing.first_pick >= 0 ? Json(result.posing.first_pick + 1) : Json(nullptr)},
+          {"rule", {{"min_pose_score", rule.min_pose_score}, {"min_depth_fit", rule.min_depth_fit},
+                    {"min_visible_fraction", rule.min_visible_fraction}}},
+          {"obj_id", c.obj_id},
+          {"pick_score", c.pick_score},
+          {"pose_score", c.pose_score},
+          {"depth_fit", c.depth_fit},
+          {"visible_fraction", c.visible_fraction},
+          {"height_mm", c.height_mm},
+          {"box", {c.box.x, c.box.y, c.box.width, c.box.height}},
+          {"R", R},
+          {"t_mm", t}};
 }
 
 }  // namespace
@@ -99,8 +166,13 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
       {"detection_tiles", {{"tile", result.detection_tiling.tile}, {"stride", result.detection_tiling.stride}}},
       {"seconds", {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
                    {"ranking", s.ranking}, {"total", s.total()}}},
+      {"seconds_to_first_pick", result.seconds_to_first_pick},
+      {"mode", pick_mode_name(result.mode)},
+      {"first_pick", first_pick_json(result, result.acceptance)},
       {"picks", picks},
-      {"proposals", proposals}};
+      {"proposals", proposals},
+      {"candidates", candidates_json(result.posing, result.proposals)}};
+  if (result.mode == PickMode::Budget) document["budget_ms"] = result.budget_ms;
   if (result.depth_proposals_run) document["depth_proposals"] = depth_proposals_json(result.depth, s.segmentation);
   // Only with a namer, so that pick without one writes what it wrote before.
   if (!result.namer_path.empty()) {

@@ -22,12 +22,15 @@ struct PickCandidate {
   double detection_score = 0.0;  // the detector's
   double naming_score = -1.0;    // the namer's probability of obj_id at the box; -1 without a namer
   double pose_score = 0.0;       // the pose estimator's (edge fit x depth fit), 0..1
+  double depth_fit = 0.0;        // the estimator's: of the part's pixels with a measured
+                                 // depth, the share that agree with the pose
   double visible_fraction = 0.0; // of the part's pixels at its pose, those not behind
                                  // a nearer measured surface
   double height_mm = 0.0;        // of the part's origin above the bin floor (the
                                  // deepest surface in view), along the optical axis
   double pick_score = 0.0;       // pose_score x visible_fraction: the ranking key
   bool from_depth = false;       // the box is a depth region's (depth_proposals.h)
+  int proposal_index = -1;       // the proposal it was posed from (pick_session's list)
   PoseStageTimes times;
 };
 

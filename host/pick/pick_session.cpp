@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/geometry/depth_from_disparity.h"
+#include "host/pick/ordered_posing.h"
 #include "host/geometry/stereo_rig.h"
 #include "host/io/input_error.h"
 #include "host/stereo/disparity_upsampling.h"
@@ -22,10 +23,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-// Pixels of a part nearer than this to a nearer measured surface still count as seen:
-// stereo depth is a few millimetres off at a metre.
-constexpr double kVisibilityToleranceMm = 5.0;
 
 // Boxes overlapping more than this are one part (proposed as several classes).
 constexpr double kDuplicateIou = 0.5;
@@ -60,61 +57,44 @@ std::vector<NamedProposal> proposals_to_pose(const PickResult& result, const cv:
   return proposals;
 }
 
-// Each proposal posed in its box, several at once (one estimator per thread); the parts a
-// template fits, in proposal order.
-std::vector<PickCandidate> pose_detections(const PickResult& result, const cv::Mat& bgr, const PoseModels& models,
-                                           const PickSettings& settings, const std::vector<NamedProposal>& proposals) {
-  const cv::Rect image_rect(cv::Point(), bgr.size());
-  std::vector<PickCandidate> candidates(proposals.size());
-  std::vector<bool> posed(proposals.size(), false);
-  std::exception_ptr failure;
-  const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
-#pragma omp parallel num_threads(threads)
-  {
-    PoseEstimator estimator(settings.pose);
-#pragma omp for schedule(dynamic)
-    for (int i = 0; i < static_cast<int>(proposals.size()); ++i) {
-      try {
-        const ObjectDetection& d = proposals[i].detection;
-        const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(d.box[0])), static_cast<int>(std::floor(d.box[1]))),
-                                      cv::Point(static_cast<int>(std::ceil(d.box[2])), static_cast<int>(std::ceil(d.box[3])))) &
-                             image_rect;
-        if (box.width < 4 || box.height < 4) continue;
-        const PoseModel& model = models.model(d.category_id, settings.model);
-        PoseEstimate estimate;
-        try {
-          estimate = estimator.estimate(model, bgr, result.depth_mm, result.camera, box);
-        } catch (const InputError&) {
-          continue;  // a box without any measured depth: nothing to pose it with
-        }
-        // No template of the class fits the box at the measured depth: a box of another
-        // class, or of several parts; nothing was posed.
-        if (estimate.candidates == 0) continue;
-        PickCandidate& c = candidates[i];
-        c.obj_id = d.category_id;
-        c.pose = estimate.pose;
-        c.box = box;
-        c.detection_score = d.score;
-        c.from_depth = proposals[i].from_depth;
-        c.naming_score = proposals[i].naming_score;
-        c.pose_score = estimate.score;
-        c.times = estimate.times;
-        c.visible_fraction = visible_fraction(model.mesh, estimate.pose, result.camera, result.depth_mm,
-                                              kVisibilityToleranceMm);
-        c.height_mm = result.floor_depth_mm > 0.0 ? result.floor_depth_mm - estimate.pose.t.z() : 0.0;
-        posed[i] = true;
-      } catch (...) {
-#pragma omp critical
-        if (!failure) failure = std::current_exception();
-      }
-    }
+PosingOptions posing_options(const PickSettings& settings, Clock::time_point pick_start) {
+  PosingOptions options;
+  options.mode = settings.mode;
+  options.budget_seconds = settings.budget_ms / 1000.0;
+  options.threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
+  options.pose = settings.pose;
+  options.model_option = settings.model;
+  options.acceptance = settings.acceptance;
+  options.depth_for_candidate = settings.depth_for_candidate;
+  options.start = pick_start;
+  return options;
+}
+
+// The posed parts ranked by pick_score (rank_picks) and one kept per part
+// (remove_duplicate_picks); in first-pick mode the accepted part leads. The first pick:
+// the accepted part, else the best-ranked.
+void rank_posed(PickResult& result) {
+  PosingOutcome& posing = result.posing;
+  result.picks = std::move(posing.posed);
+  posing.posed.clear();
+  rank_picks(result.picks);
+  result.proposals = result.picks;
+  const int accepted = posing.first_pick >= 0 ? posing.candidates[posing.first_pick].best : -1;
+  if (accepted >= 0 && result.mode == PickMode::FirstPick) {
+    std::stable_partition(result.picks.begin(), result.picks.end(),
+                          [&](const PickCandidate& c) { return c.proposal_index == accepted; });
   }
-  if (failure) std::rethrow_exception(failure);
-  std::vector<PickCandidate> picks;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (posed[i]) picks.push_back(candidates[i]);
+  remove_duplicate_picks(result.picks, kDuplicateIou);
+  const auto first = std::find_if(result.proposals.begin(), result.proposals.end(),
+                                  [&](const PickCandidate& c) { return c.proposal_index == accepted; });
+  result.first_pick_accepted = first != result.proposals.end();
+  result.has_first_pick = result.first_pick_accepted || !result.picks.empty();
+  if (result.first_pick_accepted) {
+    result.first_pick = *first;
+  } else if (result.has_first_pick) {
+    result.first_pick = result.picks.front();
   }
-  return picks;
+  result.seconds_to_first_pick = posing.seconds_to_first_pick;
 }
 
 // Known-part mode: every known part needs its templates (and so its CAD model; the
@@ -202,6 +182,11 @@ void PickSession::check_pair_settings(const PickSettings& settings) const {
   }
 }
 
+void PickSession::set_pick_mode(PickMode mode, int budget_ms) {
+  impl_->settings.mode = mode;
+  impl_->settings.budget_ms = budget_ms;
+}
+
 cv::Mat PickSession::disparity(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8) {
   return disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, impl_->settings.stereo,
                             impl_->settings.stereo_downscale, ProgressCallback(), nullptr);
@@ -242,7 +227,8 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   PickResult result;
   result.camera = stereo_rig_from(rig, left_rgb8.cols, left_rgb8.rows).left;
 
-  auto start = Clock::now();
+  const Clock::time_point pick_start = Clock::now();
+  auto start = pick_start;
   ProgressCallback progress;
   if (!settings.quiet) progress = [](const std::string& stage) { std::cerr << "  stereo: " << stage << "\n"; };
   result.disparity = disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, settings.stereo,
@@ -281,15 +267,18 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
     result.seconds.segmentation = seconds_since(start);
   }
 
-  // Each proposal posed on its own, several at once (one estimator per thread).
+  // The candidates posed in cheap order, several proposals at once (one estimator per
+  // thread), as far as the mode says.
   start = Clock::now();
-  result.picks = pose_detections(result, bgr, impl_->models, settings, proposals);
+  result.mode = settings.mode;
+  result.budget_ms = settings.budget_ms;
+  result.acceptance = settings.acceptance;
+  result.posing = pose_in_cheap_order({bgr, result.depth_mm, result.camera, result.floor_depth_mm}, proposals,
+                                      impl_->models, posing_options(settings, pick_start));
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();
-  rank_picks(result.picks);
-  result.proposals = result.picks;
-  remove_duplicate_picks(result.picks, kDuplicateIou);
+  rank_posed(result);
   result.seconds.ranking = seconds_since(start);
   return result;
 }

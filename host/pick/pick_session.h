@@ -14,6 +14,7 @@
 #include "host/detect/tiled_detection.h"
 #include "host/geometry/stereo_camera.h"
 #include "host/pick/depth_proposals.h"
+#include "host/pick/ordered_posing.h"
 #include "host/pick/pick_naming.h"
 #include "host/pick/pick_ranking.h"
 #include "host/pose/pose_models.h"
@@ -57,6 +58,14 @@ struct PickSettings {
   // Parts segmented from the depth above the bin floor that no network box matches are
   // posed too (host/pick/depth_proposals.h).
   bool depth_proposals = false;
+  // How much of the bin is posed (ordered_posing.h; docs/pick.md, "The first pick
+  // first"): the first pick that passes `acceptance`, every proposal, or on after the
+  // first pick until `budget_ms` of the pick (from its start, stereo included) have passed.
+  PickMode mode = PickMode::FirstPick;
+  int budget_ms = 0;
+  AcceptanceRule acceptance;
+  // The depth each candidate box is posed with (ordered_posing.h); empty: the scene's.
+  CandidateDepth depth_for_candidate;
   bool quiet = false;
 };
 
@@ -77,6 +86,18 @@ struct PickResult {
   // Every pose tried (a box with several classes, ranked; picks are what is left after
   // remove_duplicate_picks), for diagnosis.
   std::vector<PickCandidate> proposals;
+  // The candidates in cheap order, which were posed and why the first pick was taken
+  // (its `posed` moved into picks and proposals).
+  PickMode mode = PickMode::FirstPick;
+  int budget_ms = 0;          // PickMode::Budget's
+  AcceptanceRule acceptance;  // the rule the first pick was checked by
+  PosingOutcome posing;
+  // The answer for the robot: the accepted candidate's best pose, else (none accepted)
+  // the best-ranked pick; none without any pick.
+  bool has_first_pick = false;
+  bool first_pick_accepted = false;
+  PickCandidate first_pick;
+  double seconds_to_first_pick = 0.0;  // from the pick's start (ordered_posing.h)
   // The depth segmentation and its proposals (depth_proposals_run: when
   // PickSettings::depth_proposals is on).
   bool depth_proposals_run = false;
@@ -108,6 +129,10 @@ class PickSession {
   // dots hide the parts from a detector trained without them and are edges themselves.
   PickResult pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8, const StereoCamera& rig,
                   const cv::Mat& texture_left_rgb8 = cv::Mat());
+
+  // How much of the bin the next pairs are posed for (PickSettings::mode, budget_ms): a
+  // service's per-request choice.
+  void set_pick_mode(PickMode mode, int budget_ms = 0);
 
   // The matcher's disparity range for the next pairs (each bin's calib.txt may give its own).
   void set_ndisp(int ndisp);

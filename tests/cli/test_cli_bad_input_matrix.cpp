@@ -316,6 +316,21 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --depth-proposals maybe -o " + d + "existing.json",
        "--depth-proposals"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --budget-ms -5 -o " + d + "existing.json",
+       "--budget-ms"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --budget-ms soon -o " + d + "existing.json",
+       "--budget-ms"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --all yes -o " + d + "existing.json",
+       "--all", "yes"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --all=1 -o " + d + "existing.json",
+       "--all"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --all --budget-ms 500 -o " + d + "existing.json",
+       "--budget-ms", "--all"},
       // eval-pick
       {"eval-pick " + d + "empty_folder --out " + d + "pick_out --templates " + d + "junk.tpl", d + "empty_folder"},
       {"eval-pick " + d + "nowhere --out " + d + "pick_out --templates " + d + "junk.tpl", d + "nowhere"},

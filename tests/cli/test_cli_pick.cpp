@@ -88,9 +88,17 @@ TEST_F(PickCli, EvalPickScoresTheBinAndPickGivesTheSamePicks) {
   const cv::Mat picture = cv::imread((out / "bin000.png").string());
   EXPECT_EQ(picture.size(), cv::Size(960, 720));
 
-  // pick on the same bin, the scene folder as input: the same ranked parts.
+  // The first pick (pick's default mode), timed on the way and scored as the top pick.
+  const Json& bin_report = report.at("per_bin")[0];
+  EXPECT_EQ(report.at("first_pick_correct").get<double>(), bin_report.at("first_pick_correct").get<bool>() ? 1.0 : 0.0);
+  const double to_first = bin_report.at("seconds_to_first_pick").get<double>();
+  EXPECT_GT(to_first, stages.at("stereo").get<double>());
+  EXPECT_LE(to_first, bin_report.at("seconds").at("total").get<double>());
+
+  // pick --all on the same bin, the scene folder as input: the same ranked parts, and
+  // the same first pick.
   const fs::path picks_path = dir_ / "picks.json";
-  r = run_flexsight("pick " + (root_ / "bins" / "bin000").string() + " -o " + picks_path.string() + " --png " +
+  r = run_flexsight("pick " + (root_ / "bins" / "bin000").string() + " --all -o " + picks_path.string() + " --png " +
                         (dir_ / "picks.png").string() + common_options(),
                     dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -102,6 +110,8 @@ TEST_F(PickCli, EvalPickScoresTheBinAndPickGivesTheSamePicks) {
     for (Json& pick : *list) pick.erase("pose_ms");
   }
   EXPECT_EQ(picks, eval_picks);
+  EXPECT_EQ(read_json(picks_path).at("first_pick"), read_json(out / "bin000.json").at("first_pick"));
+  EXPECT_EQ(read_json(picks_path).at("mode"), "all");
   double previous_score = 2.0;
   for (size_t i = 0; i < picks.size(); ++i) {
     const Json& pick = picks[i];

@@ -18,6 +18,7 @@
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/middeval3_files.h"
+#include "host/pick/pick_acceptance.h"
 #include "tests/cli/cli_test_support.h"
 
 namespace flexsight {
@@ -60,6 +61,8 @@ class PickSessionApi : public ::testing::Test {
     s.detector.score_threshold = 0.03f;
     s.threads = 2;
     s.quiet = true;
+    // Every proposal posed and ranked (pick --all): the tests below look at all of them.
+    s.mode = PickMode::All;
     return s;
   }
 
@@ -137,6 +140,65 @@ TEST_F(PickSessionApi, KnownPartsAreTheOnlyOnesDetectedAndPosed) {
   for (const PickCandidate& c : result.proposals) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
   ASSERT_FALSE(result.picks.empty());
   for (const PickCandidate& c : result.picks) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
+}
+
+// The same pose, to the bit.
+bool same_pose(const PickCandidate& a, const PickCandidate& b) {
+  return a.obj_id == b.obj_id && a.box == b.box && a.pose.R == b.pose.R && a.pose.t == b.pose.t;
+}
+
+// First-pick mode (pick's default) answers with the first candidate in cheap order whose
+// pose passes the acceptance rule: a part the whole run (--all) ranks among its best,
+// after posing only the candidates up to it in the same cheap order; and the same answer
+// on one thread as on two (the answer waits for the candidates before it, whatever the
+// timing). The mode is set per call, as a service would.
+TEST_F(PickSessionApi, FirstPickModeAnswersAWellRankedPartOfTheWholeRunWhateverTheThreads) {
+  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
+  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
+  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
+  const cv::Mat passive = load_rgb8(bin.left_passive);
+
+  // The whole run (--all): its ranking does not depend on the acceptance rule.
+  PickSession session(settings(bin));
+  const PickResult all = session.pick(pair.left, pair.right, rig, passive);
+  ASSERT_FALSE(all.picks.empty());
+  // On this small bin with few template views no pose may reach the default rule's
+  // bounds (chosen on 1280x960 bins): the rule here is one the whole run's best pose
+  // passes, with room for others.
+  const PickCandidate& best = all.picks.front();
+  PickSettings s = settings(bin);
+  s.acceptance = {0.9 * best.pose_score, 0.9 * best.depth_fit, std::min(0.9, best.visible_fraction)};
+  PickSession first_session(s);
+  first_session.set_pick_mode(PickMode::FirstPick);
+  const PickResult first = first_session.pick(pair.left, pair.right, rig, passive);
+  s.mode = PickMode::FirstPick;
+  s.threads = 1;
+  const PickResult first_alone = PickSession(s).pick(pair.left, pair.right, rig, passive);
+
+  ASSERT_TRUE(first.first_pick_accepted) << "the best pose does not pass a rule made for it";
+  ASSERT_FALSE(first.picks.empty());
+  EXPECT_TRUE(same_pose(first.picks.front(), first.first_pick)) << "the accepted part leads";
+  EXPECT_TRUE(acceptance_failure(first.first_pick, first.acceptance).empty());
+  // The same cheap order; posed up to the answer, nothing after it.
+  ASSERT_EQ(first.posing.candidates.size(), all.posing.candidates.size());
+  for (std::size_t k = 0; k < first.posing.candidates.size(); ++k) {
+    EXPECT_EQ(first.posing.candidates[k].candidate.box, all.posing.candidates[k].candidate.box) << k;
+    EXPECT_EQ(first.posing.candidates[k].posed, static_cast<int>(k) <= first.posing.first_pick) << k;
+    EXPECT_TRUE(all.posing.candidates[k].posed) << k;
+  }
+  EXPECT_LE(first.proposals.size(), all.proposals.size());
+  EXPECT_GT(first.seconds_to_first_pick, first.seconds.stereo);
+  EXPECT_LE(first.seconds_to_first_pick, first.seconds.total() + 1e-3);
+  // The whole run ranks it among its first three parts.
+  const auto rank = std::find_if(all.picks.begin(), all.picks.end(),
+                                 [&](const PickCandidate& c) { return same_pose(c, first.first_pick); });
+  ASSERT_NE(rank, all.picks.end()) << "the first pick is no part of the whole run's ranking";
+  EXPECT_LT(rank - all.picks.begin(), 3);
+  // One thread: the same answer and the same candidates posed.
+  EXPECT_EQ(first_alone.posing.first_pick, first.posing.first_pick);
+  EXPECT_TRUE(same_pose(first_alone.first_pick, first.first_pick));
+  ASSERT_EQ(first_alone.picks.size(), first.picks.size());
+  for (std::size_t i = 0; i < first.picks.size(); ++i) expect_same_pick(first_alone.picks[i], first.picks[i]);
 }
 
 // A cell's templates may hold its parts alone; a known part without templates or CAD
