@@ -130,19 +130,22 @@ struct PickSession::Impl {
         namer(s.namer.empty() ? nullptr : std::make_unique<PartNamer>(s.namer)),
         models(s.templates, s.cad) {
     if (namer) namer->require_same_parts(detector.labels(), s.model);
-    if (!s.detector.parts.every_part()) {
+    const bool known_parts = !s.detector.parts.every_part();
+    if (known_parts) {
       check_known_parts(s.detector.parts, models, s);
-      return;
-    }
-    for (const DetectorLabel& label : detector.labels()) {
-      if (!models.has(label.category_id)) {
-        throw InputError(s.model, "detects object " + std::to_string(label.category_id) + " (" + label.name +
-                                      "), which " + s.templates + " and " + s.cad +
-                                      " do not hold: a detector for other parts than the CAD folder's");
+    } else {
+      for (const DetectorLabel& label : detector.labels()) {
+        if (!models.has(label.category_id)) {
+          throw InputError(s.model, "detects object " + std::to_string(label.category_id) + " (" + label.name +
+                                        "), which " + s.templates + " and " + s.cad +
+                                        " do not hold: a detector for other parts than the CAD folder's");
+        }
       }
     }
+    // The classes a depth region may be proposed as: the known parts alone in known-part mode.
     const std::vector<DetectorLabel>& labels = detector.labels();
     for (std::size_t i = 0; i < labels.size(); ++i) {
+      if (!s.detector.parts.contains(labels[i].category_id)) continue;
       proposal_classes.push_back({labels[i].category_id, static_cast<int>(i), models.mesh(labels[i].category_id).diameter});
     }
   }

@@ -111,7 +111,8 @@ TEST_F(PickSessionApi, OneSessionServesTwoCallsWithTheSameRankedPicks) {
 }
 
 // Known parts: the object of the full run's first pick and the best-scored other class
-// the detector found. Every detection, proposal and pick is one of them. (Whether the
+// the detector found. Every detection, proposal and pick is one of them, the boxes
+// proposed from the depth included. (Whether the
 // poses are right is eval-pick's to measure: this 480x360 bin is too small for that.)
 TEST_F(PickSessionApi, KnownPartsAreTheOnlyOnesDetectedAndPosed) {
   const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
@@ -133,10 +134,13 @@ TEST_F(PickSessionApi, KnownPartsAreTheOnlyOnesDetectedAndPosed) {
 
   PickSettings s = settings(bin);
   s.detector.parts.obj_ids.assign(known.begin(), known.end());
+  s.depth_proposals = true;  // the depth's regions too are proposed as the known parts alone
   PickSession session(s);
   const PickResult result = session.pick(pair.left, pair.right, rig, passive);
   ASSERT_FALSE(result.detections.empty());
   for (const ObjectDetection& d : result.detections) EXPECT_TRUE(known.count(d.category_id)) << d.category_id;
+  EXPECT_TRUE(result.depth_proposals_run);
+  for (const ObjectDetection& d : result.depth.boxes) EXPECT_TRUE(known.count(d.category_id)) << d.category_id;
   for (const PickCandidate& c : result.proposals) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
   ASSERT_FALSE(result.picks.empty());
   for (const PickCandidate& c : result.picks) EXPECT_TRUE(known.count(c.obj_id)) << c.obj_id;
