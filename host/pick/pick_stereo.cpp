@@ -1,0 +1,57 @@
+#include "host/pick/pick_stereo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "host/pick/stereo_region.h"
+#include "host/stereo/disparity_upsampling.h"
+
+namespace flexsight {
+
+bool parse_stereo_plan(const std::string& name, StereoPlan& plan) {
+  if (name == "full") {
+    plan = StereoPlan::kFull;
+  } else if (name == "roi") {
+    plan = StereoPlan::kBinRegion;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* stereo_plan_name(StereoPlan plan) { return plan == StereoPlan::kFull ? "full" : "roi"; }
+
+cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv::Mat& right, StereoParams params,
+                           int downscale, const ProgressCallback& progress, std::string* path) {
+  if (downscale <= 1) return stereo.run(left, right, params, progress, path).disparity;
+  const cv::Size small(std::max(1, left.cols / downscale), std::max(1, left.rows / downscale));
+  cv::Mat left_small, right_small;
+  cv::resize(left, left_small, small, 0, 0, cv::INTER_AREA);
+  cv::resize(right, right_small, small, 0, 0, cv::INTER_AREA);
+  const double to_full = static_cast<double>(left.cols) / small.width;
+  params.ndisp = std::max(2, static_cast<int>(std::ceil(params.ndisp / to_full)));
+  const StereoResult result = stereo.run(left_small, right_small, params, progress, path);
+  return upsample_disparity(result.disparity, result.planes_left, left.size());
+}
+
+PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                             const StereoCamera& rig, const StereoParams& params, StereoPlan plan, int downscale,
+                             const ProgressCallback& progress, std::string* path) {
+  PickDisparity out;
+  if (plan == StereoPlan::kFull) {
+    out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, params, downscale, progress, path);
+    return out;
+  }
+  // The bin found in a coarse match of the whole pair; that match stays outside it.
+  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, params, kBinSearchDownscale, progress, path);
+  out.region = find_bin_region(out.disparity, rig.resized_to(left_rgb8.cols, left_rgb8.rows), params.ndisp);
+  if (progress) progress("bin region matched");
+  const RegionCrop crop = plan_region_crop(out.region.rect, out.region.range, region_margin(params) * downscale,
+                                           left_rgb8.size());
+  const cv::Mat matched = match_region(stereo, left_rgb8, right_rgb8, crop, params, downscale);
+  matched(out.region.rect - crop.left.tl()).copyTo(out.disparity(out.region.rect));
+  return out;
+}
+
+}  // namespace flexsight

@@ -1,0 +1,46 @@
+#pragma once
+// Pick's stereo step: which pixels are matched at which size (docs/pick.md, "Stereo where
+// it matters").
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "host/geometry/stereo_camera.h"
+#include "host/pick/bin_region.h"
+#include "host/stereo/stereo_backend.h"
+
+namespace flexsight {
+
+enum class StereoPlan {
+  // The whole pair at 1/downscale of its size, over the pair's ndisp.
+  kFull,
+  // The whole pair at 1/kBinSearchDownscale (to find the bin, find_bin_region), then the
+  // bin's rectangle alone at 1/downscale over the bin's disparity range; outside the bin
+  // the coarse match stays.
+  kBinRegion,
+};
+
+// The size the whole pair is matched at to find the bin: 1/8 of 1280 x 960 takes about
+// 0.1 s on 2 cores and still shows the floor and the walls (docs/tuning-log.md).
+constexpr int kBinSearchDownscale = 8;
+
+// "full" or "roi"; false for another name.
+bool parse_stereo_plan(const std::string& name, StereoPlan& plan);
+const char* stereo_plan_name(StereoPlan plan);
+
+// The matcher on the pair shrunk by `downscale` (area averaging), its disparity brought
+// back to the pair's size along the matcher's planes (host/stereo/disparity_upsampling.h).
+cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv::Mat& right, StereoParams params,
+                           int downscale, const ProgressCallback& progress, std::string* path);
+
+struct PickDisparity {
+  cv::Mat disparity;  // CV_32FC1, the pair's size
+  BinRegion region;   // kBinRegion: the bin's rectangle and range (found or not)
+};
+
+// The disparity pick works on, by `plan` (see StereoPlan). `rig`: the pair's calibration at
+// its size. `path` (when given) receives the matcher's path of the last run.
+PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                             const StereoCamera& rig, const StereoParams& params, StereoPlan plan, int downscale,
+                             const ProgressCallback& progress = {}, std::string* path = nullptr);
+
+}  // namespace flexsight
