@@ -8,7 +8,8 @@
 // (the bin's region at 1/N), and with --boxes (one "x y w h" a line, full-size pixels)
 // refine4: roi4, then every box matched again at full size (refine_disparity_in_box),
 // each box's time in OUT_DIR/boxes.tsv; --refine-preset P (default active) and
-// --refine-coarsest W (BoxRefinement::coarsest_width) set the refinement's matcher.
+// --refine-coarsest W (BoxRefinement::coarsest_width) set the refinement's matcher,
+// --region-coarsest W (BinRegionPlan::coarsest_width) the roi plans'.
 #include <sys/resource.h>
 
 #include <chrono>
@@ -58,6 +59,7 @@ int main(int argc, char** argv) {
   }
   const std::string bin = argv[1], out = argv[2];
   BoxRefinement refinement;
+  BinRegionPlan bin_plan;
   std::string refine_preset = "active";
   std::string boxes_path, plans = "full1,full2,full4,roi1,roi2,roi4";
   for (int i = 3; i + 1 < argc; i += 2) {
@@ -65,6 +67,7 @@ int main(int argc, char** argv) {
     if (std::string(argv[i]) == "--plans") plans = argv[i + 1];
     if (std::string(argv[i]) == "--refine-preset") refine_preset = argv[i + 1];
     if (std::string(argv[i]) == "--refine-coarsest") refinement.coarsest_width = std::stoi(argv[i + 1]);
+    if (std::string(argv[i]) == "--region-coarsest") bin_plan.coarsest_width = std::stoi(argv[i + 1]);
   }
   const cv::Mat left = load_rgb8(bin + "/im0.png"), right = load_rgb8(bin + "/im1.png");
   const StereoCamera rig = read_stereo_camera(bin + "/calib.txt");
@@ -77,12 +80,13 @@ int main(int argc, char** argv) {
   std::ofstream times(out + "/times.tsv");
   std::stringstream list(plans);
   for (std::string plan; std::getline(list, plan, ',');) {
-    const int scale = plan.back() - '0';
+    const int scale = std::stoi(plan.substr(plan.find_first_of("0123456789")));
     const bool roi = plan.rfind("roi", 0) == 0 || plan.rfind("refine", 0) == 0;
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = cpu_seconds();
     PickDisparity result = pick_disparity(stereo, left, right, rig, params,
-                                          roi ? StereoPlan::kBinRegion : StereoPlan::kFull, scale);
+                                          roi ? StereoPlan::kBinRegion : StereoPlan::kFull, scale, {},
+                                          nullptr, bin_plan);
     const double coarse = seconds_of(start);
     if (plan.rfind("refine", 0) == 0) {
       StereoParams refine_params = params;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "host/geometry/depth_from_disparity.h"
 #include "host/pick/stereo_region.h"
 #include "host/stereo/disparity_upsampling.h"
 
@@ -37,21 +38,36 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
 
 PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                              const StereoCamera& rig, const StereoParams& params, StereoPlan plan, int downscale,
-                             const ProgressCallback& progress, std::string* path) {
+                             const ProgressCallback& progress, std::string* path, const BinRegionPlan& bin_plan) {
   PickDisparity out;
   if (plan == StereoPlan::kFull) {
     out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, params, downscale, progress, path);
     return out;
   }
   // The bin found in a coarse match of the whole pair; that match stays outside it.
-  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, params, kBinSearchDownscale, progress, path);
-  out.region = find_bin_region(out.disparity, rig.resized_to(left_rgb8.cols, left_rgb8.rows), params.ndisp);
-  if (progress) progress("bin region matched");
+  StereoParams region_params = params;
+  region_params.coarsest_width = bin_plan.coarsest_width;
+  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, region_params, bin_plan.search_downscale,
+                                     progress, path);
+  out.region = find_bin_region(out.disparity, rig.resized_to(left_rgb8.cols, left_rgb8.rows), params.ndisp,
+                               bin_plan.region);
+  if (progress) progress("the bin's region");
   const RegionCrop crop = plan_region_crop(out.region.rect, out.region.range, region_margin(params) * downscale,
                                            left_rgb8.size());
-  const cv::Mat matched = match_region(stereo, left_rgb8, right_rgb8, crop, params, downscale);
+  const cv::Mat matched = match_region(stereo, left_rgb8, right_rgb8, crop, region_params, downscale);
   matched(out.region.rect - crop.left.tl()).copyTo(out.disparity(out.region.rect));
   return out;
+}
+
+RegionCrop refine_pick_box(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                           const StereoCamera& rig, const StereoParams& params, const cv::Rect& box,
+                           cv::Mat& disparity, cv::Mat& depth_mm, const BoxRefinement& refinement) {
+  const RegionCrop crop = refine_disparity_in_box(stereo, left_rgb8, right_rgb8, params, box, disparity, refinement);
+  if (crop.left.empty()) return crop;
+  // Depth depends on the disparity alone, so the box's part of the map converts on its own.
+  const cv::Rect inside = box & cv::Rect(cv::Point(), disparity.size());
+  depth_from_disparity(disparity(inside), rig, 1e-3, DepthRule::pick()).copyTo(depth_mm(inside));
+  return crop;
 }
 
 }  // namespace flexsight

@@ -13,15 +13,24 @@ namespace flexsight {
 enum class StereoPlan {
   // The whole pair at 1/downscale of its size, over the pair's ndisp.
   kFull,
-  // The whole pair at 1/kBinSearchDownscale (to find the bin, find_bin_region), then the
+  // The whole pair at 1/BinRegionPlan::search_downscale (to find the bin, find_bin_region), then the
   // bin's rectangle alone at 1/downscale over the bin's disparity range; outside the bin
   // the coarse match stays.
   kBinRegion,
 };
 
-// The size the whole pair is matched at to find the bin: 1/8 of 1280 x 960 takes about
-// 0.1 s on 2 cores and still shows the floor and the walls (docs/tuning-log.md).
-constexpr int kBinSearchDownscale = 8;
+// How kBinRegion matches (docs/tuning-log.md has the measurements behind each default).
+struct BinRegionPlan {
+  // The whole pair is matched at 1/search_downscale to find the bin: 1/8 of 1280 x 960
+  // still shows the floor and the walls (1/16 lost parts of the range on dev bins).
+  int search_downscale = 8;
+  // The matcher's coarsest level is at most this wide in both matches
+  // (StereoParams::coarsest_width). Both images are a few hundred pixels wide or less, so
+  // with the pair's 128 px the coarsest level, which starts from random planes with the
+  // dense window step, would take about half the time.
+  int coarsest_width = 32;
+  BinRegionOptions region;
+};
 
 // "full" or "roi"; false for another name.
 bool parse_stereo_plan(const std::string& name, StereoPlan& plan);
@@ -41,6 +50,16 @@ struct PickDisparity {
 // its size. `path` (when given) receives the matcher's path of the last run.
 PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                              const StereoCamera& rig, const StereoParams& params, StereoPlan plan, int downscale,
-                             const ProgressCallback& progress = {}, std::string* path = nullptr);
+                             const ProgressCallback& progress = {}, std::string* path = nullptr,
+                             const BinRegionPlan& bin_plan = BinRegionPlan());
+
+// A candidate's box matched again at full resolution before it is posed
+// (refine_disparity_in_box, with `params` as for the whole pair) and pick's depth
+// rewritten inside it from the refined disparity. `rig`: the pair's calibration at its
+// size; `disparity`, `depth_mm`: CV_32FC1 of the pair's size, changed inside the box
+// (clipped to the image) only. Returns the crop matched (empty: nothing changed).
+RegionCrop refine_pick_box(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
+                           const StereoCamera& rig, const StereoParams& params, const cv::Rect& box,
+                           cv::Mat& disparity, cv::Mat& depth_mm, const BoxRefinement& refinement = BoxRefinement());
 
 }  // namespace flexsight

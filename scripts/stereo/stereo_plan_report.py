@@ -3,7 +3,7 @@
 
 usage: scripts/stereo/stereo_plan_report.py BIN_DIR [BIN_DIR ...] --out DIR
            [--bench build/bench/flexsight_bench_stereo_plan] [--plans full1,...,refine4]
-           [--min-visib 0.5]
+           [--min-visib 0.5] [--bench-args '--region-coarsest 128 ...']
 
 Each bin (MiddEval3 layout with BOP ground truth: disp0GT.pfm, mask0nocc.png,
 mask_visib/, scene_gt_info.json) is run through flexsight_bench_stereo_plan into
@@ -60,6 +60,7 @@ def main():
     ap.add_argument("--bench", default="build/bench/flexsight_bench_stereo_plan")
     ap.add_argument("--plans", default="full1,full2,full4,roi1,roi2,roi4,refine4")
     ap.add_argument("--min-visib", type=float, default=0.5)
+    ap.add_argument("--bench-args", default="", help="more arguments for the bench, e.g. '--region-coarsest 128'")
     args = ap.parse_args()
     plans = args.plans.split(",")
     report = {}
@@ -75,7 +76,7 @@ def main():
         done = [l.split("\t")[0] for l in open(times_path)] if os.path.exists(times_path) else []
         if any(p not in done for p in plans):
             subprocess.run([args.bench, bin_dir, out, "--boxes", os.path.join(out, "boxes.txt"),
-                            "--plans", ",".join(plans)], check=True)
+                            "--plans", ",".join(plans)] + args.bench_args.split(), check=True)
         gt, parts = part_masks(bin_dir)
         in_boxes = np.zeros(gt.shape, bool)
         for x, y, w, h in boxes:

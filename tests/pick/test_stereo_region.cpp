@@ -2,7 +2,8 @@
 // candidate's box refined at full size on a small simulated bin (`synth bin`, 320x240,
 // four T-LESS parts under the projector): inside the parts' boxes bad-2 against the ground
 // truth falls below the coarse match's, nothing outside a box changes, the same inputs
-// give the same bytes, and boxes at or past the image's borders work.
+// give the same bytes, boxes at or past the image's borders work, and pick's depth
+// follows the refined disparity.
 #include "host/pick/stereo_region.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "host/geometry/depth_from_disparity.h"
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/pfm.h"
@@ -150,6 +152,21 @@ TEST_F(BoxRefinementOnABin, BoxesAtAndPastTheImageBordersWork) {
   EXPECT_TRUE(refine_disparity_in_box(stereo_, left_, right_, params_, cv::Rect(400, 0, 10, 10), untouched)
                   .left.empty());
   EXPECT_TRUE(same_bytes(untouched, coarse_));
+}
+
+TEST_F(BoxRefinementOnABin, PicksDepthFollowsTheRefinedDisparityInsideTheBoxOnly) {
+  const fs::path bin = *dir_ / "bins" / "bin000";
+  const StereoCamera rig = read_stereo_camera((bin / "calib.txt").string()).resized_to(left_.cols, left_.rows);
+  cv::Mat disparity = coarse_.clone();
+  const cv::Mat coarse_depth = depth_from_disparity(coarse_, rig, 1e-3, DepthRule::pick());
+  cv::Mat depth = coarse_depth.clone();
+  const cv::Rect box = boxes_.at(0);
+  refine_pick_box(stereo_, left_, right_, rig, params_, box, disparity, depth);
+  EXPECT_TRUE(same_bytes(depth, depth_from_disparity(disparity, rig, 1e-3, DepthRule::pick())));
+  cv::Mat outside(depth.size(), CV_8UC1, cv::Scalar(255));
+  outside(box).setTo(0);
+  EXPECT_EQ(cv::countNonZero((depth != coarse_depth) & outside), 0);
+  EXPECT_GT(cv::countNonZero(depth(box) != coarse_depth(box)), 0);
 }
 
 }  // namespace
