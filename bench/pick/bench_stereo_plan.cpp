@@ -6,7 +6,7 @@
 // (plan, wall seconds of the plan alone and with the boxes, CPU seconds,
 // the bin's rectangle and range). Plans: full1, full2, full4 (the whole pair at 1/N), roi1, roi2, roi4
 // (the bin's region at 1/N), and with --boxes (one "x y w h" a line, full-size pixels)
-// refine4: roi4, then every box matched again at full size (refine_disparity_in_box),
+// refine4: roi4, then every box matched again at full size (refine_pick_box),
 // each box's time in OUT_DIR/boxes.tsv; --refine-preset P (default active) and
 // --refine-coarsest W (BoxRefinement::coarsest_width) set the refinement's matcher,
 // --region-coarsest W (BinRegionPlan::coarsest_width) the roi plans'.
@@ -95,7 +95,9 @@ int main(int argc, char** argv) {
       for (const cv::Rect& box : read_boxes(boxes_path)) {
         const auto box_start = std::chrono::steady_clock::now();
         const double box_cpu = cpu_seconds();
-        const RegionCrop crop = refine_disparity_in_box(stereo, left, right, refine_params, box, result.disparity, refinement);
+        cv::Mat depth_mm(result.disparity.size(), CV_32FC1, cv::Scalar(0));
+        const RegionCrop crop = refine_pick_box(stereo, left, right, rig.resized_to(left.cols, left.rows), refine_params,
+                                                box, result.disparity, depth_mm, refinement);
         box_times << box.x << "\t" << box.y << "\t" << box.width << "\t" << box.height << "\t"
                   << crop.left.width << "x" << crop.left.height << "\t" << crop.ndisp << "\t" << seconds_of(box_start)
                   << "\t" << cpu_seconds() - box_cpu << "\n";

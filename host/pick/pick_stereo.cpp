@@ -5,10 +5,20 @@
 #include <opencv2/imgproc.hpp>
 
 #include "host/geometry/depth_from_disparity.h"
+#include "host/geometry/stereo_rig.h"
 #include "host/pick/stereo_region.h"
 #include "host/stereo/disparity_upsampling.h"
 
 namespace flexsight {
+namespace {
+
+// The disparity of depth `z` (the rig's unit): StereoCamera::depth inverted.
+double rig_disparity_at_depth(const StereoCamera& rig, double z) {
+  const Eigen::Matrix4d& Q = rig.Q;
+  return (Q(2, 3) - z * Q(3, 3)) / (z * Q(3, 2) - Q(2, 2));
+}
+
+}  // namespace
 
 bool parse_stereo_plan(const std::string& name, StereoPlan& plan) {
   if (name == "full") {
@@ -62,10 +72,21 @@ PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, co
 RegionCrop refine_pick_box(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                            const StereoCamera& rig, const StereoParams& params, const cv::Rect& box,
                            cv::Mat& disparity, cv::Mat& depth_mm, const BoxRefinement& refinement) {
-  const RegionCrop crop = refine_disparity_in_box(stereo, left_rgb8, right_rgb8, params, box, disparity, refinement);
+  const cv::Rect inside = box & cv::Rect(cv::Point(), disparity.size());
+  BoxRefinement spanned = refinement;
+  const DisparityRange coarse = disparity_range_in(disparity, inside, 0);
+  Eigen::Vector3d p;
+  if (coarse.max >= coarse.min && rig.point(inside.x, inside.y, coarse.min, p)) {
+    // The lowest surface's depth, less the box's diagonal in millimetres there.
+    const double focal = stereo_rig_from(rig, disparity.cols, disparity.rows).left.fx;
+    const double depth = p.z();
+    const double rise = std::hypot(inside.width, inside.height) * depth / focal;
+    const double top = rig_disparity_at_depth(rig, depth - rise);
+    if (std::isfinite(top)) spanned.min_span = std::max(spanned.min_span, static_cast<int>(std::ceil(top)) - coarse.min);
+  }
+  const RegionCrop crop = refine_disparity_in_box(stereo, left_rgb8, right_rgb8, params, box, disparity, spanned);
   if (crop.left.empty()) return crop;
   // Depth depends on the disparity alone, so the box's part of the map converts on its own.
-  const cv::Rect inside = box & cv::Rect(cv::Point(), disparity.size());
   depth_from_disparity(disparity(inside), rig, 1e-3, DepthRule::pick()).copyTo(depth_mm(inside));
   return crop;
 }

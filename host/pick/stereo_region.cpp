@@ -88,8 +88,9 @@ RegionCrop refine_disparity_in_box(StereoBackend& stereo, const cv::Mat& left_rg
                                    const StereoParams& params, const cv::Rect& box, cv::Mat& disparity,
                                    const BoxRefinement& refinement) {
   const cv::Rect inside = box & cv::Rect(cv::Point(), disparity.size());
-  const DisparityRange range = disparity_range_in(disparity, inside, refinement.range_margin);
+  DisparityRange range = disparity_range_in(disparity, inside, refinement.range_margin);
   if (inside.empty() || range.max < range.min) return {};
+  range.max = std::max(range.max, range.min + refinement.min_span);
   StereoParams crop_params = params;
   if (refinement.coarsest_width > 0) crop_params.coarsest_width = refinement.coarsest_width;
   const RegionCrop crop = plan_region_crop(inside, range, region_margin(params), disparity.size());

@@ -64,6 +64,9 @@ struct BoxRefinement {
   // window step, takes half the crop's time; 32 px puts it at 1/16 of the crop
   // (docs/tuning-log.md).
   int coarsest_width = 32;
+  // The range reaches at least this many pixels above its minimum (refine_pick_box sets
+  // it from the box's size): a coarse level loses the tops of small, tall parts.
+  int min_span = 0;
 };
 
 // A candidate's box matched again at full resolution: the range is read from the coarse

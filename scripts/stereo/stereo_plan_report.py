@@ -4,6 +4,7 @@
 usage: scripts/stereo/stereo_plan_report.py BIN_DIR [BIN_DIR ...] --out DIR
            [--bench build/bench/flexsight_bench_stereo_plan] [--plans full1,...,refine4]
            [--min-visib 0.5] [--bench-args '--region-coarsest 128 ...']
+           [--picture FILE.png]
 
 Each bin (MiddEval3 layout with BOP ground truth: disp0GT.pfm, mask0nocc.png,
 mask_visib/, scene_gt_info.json) is run through flexsight_bench_stereo_plan into
@@ -12,7 +13,9 @@ DIR/<bin>/ (skipped when DIR/<bin>/times.tsv already lists every plan), with the
 Printed: per plan the median wall and CPU seconds over the bins and bad-2 (|d - gt| > 2
 px, a non-finite result counts as bad) on the parts' pixels that both cameras see (all
 parts, and inside the refined boxes); per box the median wall and CPU seconds and size.
-DIR/report.json holds every figure per bin.
+DIR/report.json holds every figure per bin. --picture: the first bin's left view with the
+bin's region (roi4's rectangle) and the refined boxes, and per plan full1, roi4, refine4
+(those run) the parts' pixels more than 2 px off in red, the others in green.
 """
 import argparse
 import json
@@ -53,6 +56,31 @@ def bad2(result, gt, mask):
     return float(np.mean(~(err <= 2.0)))
 
 
+def picture(bin_dir, out, plans, path):
+    """A row of panels at 1/4 size: the left view with the region and boxes, then per plan
+    the parts' pixels coloured by error."""
+    left = cv2.imread(os.path.join(bin_dir, "im0.png"))
+    gt, parts = part_masks(bin_dir)
+    times = {l.split("\t")[0]: l.rstrip("\n").split("\t") for l in open(os.path.join(out, "times.tsv"))}
+    first = left.copy()
+    if "roi4" in times:
+        x, y, w, h = map(int, times["roi4"][4].split(","))
+        cv2.rectangle(first, (x, y), (x + w - 1, y + h - 1), (255, 200, 0), 6)
+    for x, y, w, h in (tuple(map(int, l.split())) for l in open(os.path.join(out, "boxes.txt"))):
+        cv2.rectangle(first, (x, y), (x + w - 1, y + h - 1), (0, 220, 255), 3)
+    panels = [first]
+    for plan in [p for p in ("full1", "roi4", "refine4") if p in plans and p in times]:
+        result = read_pfm(os.path.join(out, plan + ".pfm"))
+        panel = (left * 0.35).astype(np.uint8)
+        bad = parts & ~(np.abs(result - gt) <= 2.0)
+        panel[parts & ~bad] = (0, 200, 0)
+        panel[bad] = (0, 0, 255)
+        cv2.putText(panel, plan, (20, 70), cv2.FONT_HERSHEY_SIMPLEX, 2.2, (255, 255, 255), 4)
+        panels.append(panel)
+    row = np.hstack([cv2.resize(p, None, fx=0.25, fy=0.25, interpolation=cv2.INTER_AREA) for p in panels])
+    cv2.imwrite(path, row)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("bins", nargs="+")
@@ -61,6 +89,7 @@ def main():
     ap.add_argument("--plans", default="full1,full2,full4,roi1,roi2,roi4,refine4")
     ap.add_argument("--min-visib", type=float, default=0.5)
     ap.add_argument("--bench-args", default="", help="more arguments for the bench, e.g. '--region-coarsest 128'")
+    ap.add_argument("--picture")
     args = ap.parse_args()
     plans = args.plans.split(",")
     report = {}
@@ -95,6 +124,10 @@ def main():
                 entry["boxes"].append({"box": [int(x), int(y), int(w), int(h)], "crop": crop, "ndisp": int(ndisp),
                                        "wall_s": float(wall), "cpu_s": float(cpu)})
         report[parent + "/" + name] = entry
+    if args.picture:
+        first = os.path.normpath(args.bins[0])
+        picture(first, os.path.join(args.out, os.path.basename(os.path.dirname(first)) + "_" +
+                                    os.path.basename(first)), plans, args.picture)
     with open(os.path.join(args.out, "report.json"), "w") as f:
         json.dump(report, f, indent=1)
 

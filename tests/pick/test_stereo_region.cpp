@@ -169,5 +169,22 @@ TEST_F(BoxRefinementOnABin, PicksDepthFollowsTheRefinedDisparityInsideTheBoxOnly
   EXPECT_GT(cv::countNonZero(depth(box) != coarse_depth(box)), 0);
 }
 
+TEST_F(BoxRefinementOnABin, TheBinsRegionIsMatchedOverItsRangeAndTheRestKeepsTheSearchMatch) {
+  const fs::path bin = *dir_ / "bins" / "bin000";
+  const StereoCamera rig = read_stereo_camera((bin / "calib.txt").string());
+  const BinRegionPlan plan;
+  const PickDisparity roi = pick_disparity(stereo_, left_, right_, rig, params_, StereoPlan::kBinRegion, 1);
+  StereoParams search_params = params_;
+  search_params.coarsest_width = plan.coarsest_width;
+  const cv::Mat search = disparity_at_scale(stereo_, left_, right_, search_params, plan.search_downscale, {}, nullptr);
+  ASSERT_EQ(roi.disparity.size(), left_.size());
+  EXPECT_TRUE(roi.region.found);
+  EXPECT_LT(roi.region.range.count(), params_.ndisp);
+  cv::Mat outside(left_.size(), CV_8UC1, cv::Scalar(255));
+  outside(roi.region.rect).setTo(0);
+  EXPECT_EQ(cv::countNonZero((roi.disparity != search) & outside), 0);
+  EXPECT_LT(bad2_on_parts_in_boxes(roi.disparity), bad2_on_parts_in_boxes(search) * 0.8);
+}
+
 }  // namespace
 }  // namespace flexsight
