@@ -5,8 +5,9 @@
 // used, as pick does. Each plan writes OUT_DIR/<plan>.pfm and one line of OUT_DIR/times.tsv
 // (plan, wall seconds of the plan alone and with the boxes, CPU seconds,
 // the bin's rectangle and range). Plans: full1, full2, full4 (the whole pair at 1/N), roi1, roi2, roi4
-// (the bin's region at 1/N), and with --boxes (one "x y w h" a line, full-size pixels)
-// refine4: roi4, then every box matched again at full size (refine_pick_box),
+// (the bin's region at 1/N), and with --boxes (one "x y w h diameter" a line, full-size pixels and mm)
+// refine4: roi4, then every box matched again at full size (refine_pick_box; a fifth
+// column: the part's diameter, mm),
 // each box's time in OUT_DIR/boxes.tsv; --refine-preset P (default active) and
 // --refine-coarsest W (BoxRefinement::coarsest_width) set the refinement's matcher,
 // --region-coarsest W (BinRegionPlan::coarsest_width) the roi plans'.
@@ -42,11 +43,17 @@ double cpu_seconds() {
   return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-std::vector<cv::Rect> read_boxes(const std::string& path) {
-  std::vector<cv::Rect> boxes;
+struct Box {
+  cv::Rect rect;
+  double diameter_mm = 0.0;
+};
+
+std::vector<Box> read_boxes(const std::string& path) {
+  std::vector<Box> boxes;
   std::ifstream in(path);
   int x, y, w, h;
-  while (in >> x >> y >> w >> h) boxes.emplace_back(x, y, w, h);
+  double diameter;
+  while (in >> x >> y >> w >> h >> diameter) boxes.push_back({cv::Rect(x, y, w, h), diameter});
   return boxes;
 }
 
@@ -92,12 +99,13 @@ int main(int argc, char** argv) {
       StereoParams refine_params = params;
       apply_stereo_preset(refine_preset, refine_params);
       std::ofstream box_times(out + "/boxes.tsv");
-      for (const cv::Rect& box : read_boxes(boxes_path)) {
+      for (const Box& part : read_boxes(boxes_path)) {
+        const cv::Rect& box = part.rect;
         const auto box_start = std::chrono::steady_clock::now();
         const double box_cpu = cpu_seconds();
         cv::Mat depth_mm(result.disparity.size(), CV_32FC1, cv::Scalar(0));
         const RegionCrop crop = refine_pick_box(stereo, left, right, rig.resized_to(left.cols, left.rows), refine_params,
-                                                box, result.disparity, depth_mm, refinement);
+                                                box, part.diameter_mm, result.disparity, depth_mm, refinement);
         box_times << box.x << "\t" << box.y << "\t" << box.width << "\t" << box.height << "\t"
                   << crop.left.width << "x" << crop.left.height << "\t" << crop.ndisp << "\t" << seconds_of(box_start)
                   << "\t" << cpu_seconds() - box_cpu << "\n";

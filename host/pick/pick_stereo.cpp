@@ -71,16 +71,18 @@ PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, co
 
 RegionCrop refine_pick_box(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                            const StereoCamera& rig, const StereoParams& params, const cv::Rect& box,
-                           cv::Mat& disparity, cv::Mat& depth_mm, const BoxRefinement& refinement) {
+                           double part_diameter_mm, cv::Mat& disparity, cv::Mat& depth_mm,
+                           const BoxRefinement& refinement) {
   const cv::Rect inside = box & cv::Rect(cv::Point(), disparity.size());
   BoxRefinement spanned = refinement;
   const DisparityRange coarse = disparity_range_in(disparity, inside, 0);
   Eigen::Vector3d p;
   if (coarse.max >= coarse.min && rig.point(inside.x, inside.y, coarse.min, p)) {
-    // The lowest surface's depth, less the box's diagonal in millimetres there.
+    // The lowest surface's depth, less the part's diameter or the box's diagonal there.
     const double focal = stereo_rig_from(rig, disparity.cols, disparity.rows).left.fx;
     const double depth = p.z();
-    const double rise = std::hypot(inside.width, inside.height) * depth / focal;
+    const double rise = std::max(std::hypot(inside.width, inside.height) * depth / focal,
+                                 part_diameter_mm * 1e-3 / rig.metres_per_unit);
     const double top = rig_disparity_at_depth(rig, depth - rise);
     if (std::isfinite(top)) spanned.min_span = std::max(spanned.min_span, static_cast<int>(std::ceil(top)) - coarse.min);
   }

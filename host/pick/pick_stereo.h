@@ -58,11 +58,13 @@ PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, co
 // rewritten inside it from the refined disparity. `rig`: the pair's calibration at its
 // size; `disparity`, `depth_mm`: CV_32FC1 of the pair's size, changed inside the box
 // (clipped to the image) only. The box's range reaches at least as high as a surface
-// above the box's lowest one by the box's diagonal (a part is about as tall as it is
-// wide; the coarse match misses small tall parts' tops). Returns the crop matched
-// (empty: nothing changed).
+// `part_diameter_mm` (the candidate's part's diameter; 0: unknown) or the box's diagonal,
+// whichever is more, above the box's lowest surface: the coarse match misses the tops of
+// small parts standing up, which look small from above. Returns the crop matched (empty:
+// nothing changed).
 RegionCrop refine_pick_box(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                            const StereoCamera& rig, const StereoParams& params, const cv::Rect& box,
-                           cv::Mat& disparity, cv::Mat& depth_mm, const BoxRefinement& refinement = BoxRefinement());
+                           double part_diameter_mm, cv::Mat& disparity, cv::Mat& depth_mm,
+                           const BoxRefinement& refinement = BoxRefinement());
 
 }  // namespace flexsight

@@ -4,7 +4,7 @@
 usage: scripts/stereo/stereo_plan_report.py BIN_DIR [BIN_DIR ...] --out DIR
            [--bench build/bench/flexsight_bench_stereo_plan] [--plans full1,...,refine4]
            [--min-visib 0.5] [--bench-args '--region-coarsest 128 ...']
-           [--picture FILE.png]
+           [--picture FILE.png] [--models-info FILE]
 
 Each bin (MiddEval3 layout with BOP ground truth: disp0GT.pfm, mask0nocc.png,
 mask_visib/, scene_gt_info.json) is run through flexsight_bench_stereo_plan into
@@ -42,11 +42,17 @@ def part_masks(bin_dir):
     return gt, parts & nocc & np.isfinite(gt) & (gt > 0)
 
 
-def boxes_of(bin_dir, min_visib):
+def boxes_of(bin_dir, min_visib, models_info):
+    """The visible boxes of the parts at least min_visib visible, each with its part's
+    diameter (mm)."""
     with open(os.path.join(bin_dir, "scene_gt_info.json")) as f:
-        info = json.load(f)
-    entries = next(iter(info.values()))
-    return [e["bbox_visib"] for e in entries if e["visib_fract"] >= min_visib and e["bbox_visib"][2] > 0]
+        info = next(iter(json.load(f).values()))
+    with open(os.path.join(bin_dir, "scene_gt.json")) as f:
+        gt = next(iter(json.load(f).values()))
+    with open(models_info) as f:
+        diameters = {int(k): v["diameter"] for k, v in json.load(f).items()}
+    return [e["bbox_visib"] + [diameters[g["obj_id"]]] for e, g in zip(info, gt)
+            if e["visib_fract"] >= min_visib and e["bbox_visib"][2] > 0]
 
 
 def bad2(result, gt, mask):
@@ -66,7 +72,7 @@ def picture(bin_dir, out, plans, path):
     if "roi4" in times:
         x, y, w, h = map(int, times["roi4"][4].split(","))
         cv2.rectangle(first, (x, y), (x + w - 1, y + h - 1), (255, 200, 0), 6)
-    for x, y, w, h in (tuple(map(int, l.split())) for l in open(os.path.join(out, "boxes.txt"))):
+    for x, y, w, h in (tuple(map(int, l.split()[:4])) for l in open(os.path.join(out, "boxes.txt"))):
         cv2.rectangle(first, (x, y), (x + w - 1, y + h - 1), (0, 220, 255), 3)
     panels = [first]
     for plan in [p for p in ("full1", "roi4", "refine4") if p in plans and p in times]:
@@ -90,6 +96,9 @@ def main():
     ap.add_argument("--min-visib", type=float, default=0.5)
     ap.add_argument("--bench-args", default="", help="more arguments for the bench, e.g. '--region-coarsest 128'")
     ap.add_argument("--picture")
+    ap.add_argument("--models-info", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                                          "models", "tless-cad", "models_info.json"),
+                    help="the parts' diameters (BOP models_info.json)")
     args = ap.parse_args()
     plans = args.plans.split(",")
     report = {}
@@ -98,9 +107,9 @@ def main():
         parent = os.path.basename(os.path.dirname(os.path.normpath(bin_dir)))
         out = os.path.join(args.out, parent + "_" + name)
         os.makedirs(out, exist_ok=True)
-        boxes = boxes_of(bin_dir, args.min_visib)
+        boxes = boxes_of(bin_dir, args.min_visib, args.models_info)
         with open(os.path.join(out, "boxes.txt"), "w") as f:
-            f.writelines("%d %d %d %d\n" % tuple(b) for b in boxes)
+            f.writelines("%d %d %d %d %.1f\n" % tuple(b) for b in boxes)
         times_path = os.path.join(out, "times.tsv")
         done = [l.split("\t")[0] for l in open(times_path)] if os.path.exists(times_path) else []
         if any(p not in done for p in plans):
@@ -108,7 +117,7 @@ def main():
                             "--plans", ",".join(plans)] + args.bench_args.split(), check=True)
         gt, parts = part_masks(bin_dir)
         in_boxes = np.zeros(gt.shape, bool)
-        for x, y, w, h in boxes:
+        for x, y, w, h, _ in boxes:
             in_boxes[y:y + h, x:x + w] = True
         entry = {"plans": {}, "boxes": []}
         for line in open(times_path):

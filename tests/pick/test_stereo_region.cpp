@@ -161,7 +161,7 @@ TEST_F(BoxRefinementOnABin, PicksDepthFollowsTheRefinedDisparityInsideTheBoxOnly
   const cv::Mat coarse_depth = depth_from_disparity(coarse_, rig, 1e-3, DepthRule::pick());
   cv::Mat depth = coarse_depth.clone();
   const cv::Rect box = boxes_.at(0);
-  refine_pick_box(stereo_, left_, right_, rig, params_, box, disparity, depth);
+  refine_pick_box(stereo_, left_, right_, rig, params_, box, 80.0, disparity, depth);
   EXPECT_TRUE(same_bytes(depth, depth_from_disparity(disparity, rig, 1e-3, DepthRule::pick())));
   cv::Mat outside(depth.size(), CV_8UC1, cv::Scalar(255));
   outside(box).setTo(0);
