@@ -4,7 +4,7 @@
 usage: scripts/stereo/stereo_plan_report.py BIN_DIR [BIN_DIR ...] --out DIR
            [--bench build/bench/flexsight_bench_stereo_plan] [--plans full1,...,refine4]
            [--min-visib 0.5] [--bench-args '--region-coarsest 128 ...']
-           [--picture FILE.png] [--models-info FILE]
+           [--picture FILE.jpg] [--models-info FILE]
 
 Each bin (MiddEval3 layout with BOP ground truth: disp0GT.pfm, mask0nocc.png,
 mask_visib/, scene_gt_info.json) is run through flexsight_bench_stereo_plan into
@@ -84,7 +84,7 @@ def picture(bin_dir, out, plans, path):
         cv2.putText(panel, plan, (20, 70), cv2.FONT_HERSHEY_SIMPLEX, 2.2, (255, 255, 255), 4)
         panels.append(panel)
     row = np.hstack([cv2.resize(p, None, fx=0.25, fy=0.25, interpolation=cv2.INTER_AREA) for p in panels])
-    cv2.imwrite(path, row)
+    cv2.imwrite(path, row, [cv2.IMWRITE_JPEG_QUALITY, 80])
 
 
 def main():
