@@ -44,6 +44,7 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const std::string parts = take_option(args, "--parts");
   const std::string classes = take_option(args, "--classes-per-box");
   const std::string downscale = take_option(args, "--stereo-downscale");
+  const std::string plan = take_option(args, "--stereo-plan");
   const std::string half_turns = take_option(args, "--half-turns");
   const std::string edges = take_option(args, "--edges");
   if (!edges.empty()) settings.pose.dcd.thresholds = edge_thresholds_named(edges, "--edges");
@@ -58,6 +59,9 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   }
   if (!downscale.empty()) {
     settings.stereo_downscale = static_cast<int>(parse_whole_number("--stereo-downscale", downscale, 1, 8));
+  }
+  if (!plan.empty() && !parse_stereo_plan(plan, settings.stereo_plan)) {
+    throw InputError("option --stereo-plan", "must be full or roi, not '" + plan + "'");
   }
   if (!half_turns.empty()) {
     if (half_turns != "on" && half_turns != "off") throw InputError("option --half-turns", "must be on or off");
@@ -134,6 +138,10 @@ std::string pick_options_help() {
        << "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
           "                     the matcher's time falls with N squared; detection and\n"
           "                     pose keep the full image\n"
+          "  --stereo-plan full|roi  what is matched: the whole pair (full, default), or\n"
+          "                     the bin alone over its disparity range, found in a match\n"
+          "                     at 1/8 size (roi; the rest keeps that coarse match);\n"
+          "                     --stereo-downscale applies to what is matched\n"
           "  --edges E          pose edge thresholds: contrast+noise (default: each box's\n"
           "                     grey levels stretched, thresholds above its noise),\n"
           "                     fixed, contrast or noise (docs/pose.md)\n"

@@ -13,7 +13,7 @@
 #include "host/pick/ordered_posing.h"
 #include "host/geometry/stereo_rig.h"
 #include "host/io/input_error.h"
-#include "host/stereo/disparity_upsampling.h"
+#include "host/pick/pick_stereo.h"
 #include "host/stereo/stereo_backend.h"
 
 namespace flexsight {
@@ -27,21 +27,6 @@ double seconds_since(Clock::time_point start) {
 // Boxes overlapping more than this are one part (proposed as several classes).
 constexpr double kDuplicateIou = 0.5;
 
-
-// The matcher on the pair shrunk by `downscale` (area averaging), its disparity brought back
-// to the pair's size along the matcher's planes (host/stereo/disparity_upsampling.h).
-cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv::Mat& right, StereoParams params,
-                           int downscale, const ProgressCallback& progress, std::string* path) {
-  if (downscale <= 1) return stereo.run(left, right, params, progress, path).disparity;
-  const cv::Size small(std::max(1, left.cols / downscale), std::max(1, left.rows / downscale));
-  cv::Mat left_small, right_small;
-  cv::resize(left, left_small, small, 0, 0, cv::INTER_AREA);
-  cv::resize(right, right_small, small, 0, 0, cv::INTER_AREA);
-  const double to_full = static_cast<double>(left.cols) / small.width;
-  params.ndisp = std::max(2, static_cast<int>(std::ceil(params.ndisp / to_full)));
-  const StereoResult result = stereo.run(left_small, right_small, params, progress, path);
-  return upsample_disparity(result.disparity, result.planes_left, left.size());
-}
 
 // The boxes and classes to pose: the namer's (pick_naming.h) when there is one, else the
 // detector's (pose_proposals).
@@ -234,8 +219,9 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   auto start = pick_start;
   ProgressCallback progress;
   if (!settings.quiet) progress = [](const std::string& stage) { std::cerr << "  stereo: " << stage << "\n"; };
-  result.disparity = disparity_at_scale(impl_->stereo, left_rgb8, right_rgb8, settings.stereo,
-                                        settings.stereo_downscale, progress, &result.stereo_path);
+  result.disparity = pick_disparity(impl_->stereo, left_rgb8, right_rgb8, rig, settings.stereo, settings.stereo_plan,
+                                    settings.stereo_downscale, progress, &result.stereo_path)
+                         .disparity;
   result.seconds.stereo = seconds_since(start);
 
   start = Clock::now();

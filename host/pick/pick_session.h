@@ -17,6 +17,7 @@
 #include "host/pick/ordered_posing.h"
 #include "host/pick/pick_naming.h"
 #include "host/pick/pick_ranking.h"
+#include "host/pick/pick_stereo.h"
 #include "host/pose/pose_models.h"
 #include "host/runtime/device_options.h"
 #include "host/stereo/stereo_params.h"
@@ -55,6 +56,10 @@ struct PickSettings {
   // across a part's edge): the matcher's time falls with the square of it; detection and
   // pose keep the full image.
   int stereo_downscale = 1;
+  // Which pixels are matched (host/pick/pick_stereo.h): the whole pair (full), or the bin's
+  // region alone over its disparity range, found in a match at 1/8 size (roi;
+  // docs/pick.md, "Stereo where it matters"). stereo_downscale applies to what is matched.
+  StereoPlan stereo_plan = StereoPlan::kFull;
   // Parts segmented from the depth above the bin floor that no network box matches are
   // posed too (host/pick/depth_proposals.h).
   bool depth_proposals = false;

@@ -299,6 +299,9 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
            "junk.tpl --stereo-downscale 0 -o " + d + "existing.json",
        "--stereo-downscale"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --stereo-plan half -o " + d + "existing.json",
+       "--stereo-plan"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --half-turns maybe -o " + d + "existing.json",
        "--half-turns"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +
