@@ -45,6 +45,8 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   const std::string classes = take_option(args, "--classes-per-box");
   const std::string downscale = take_option(args, "--stereo-downscale");
   const std::string plan = take_option(args, "--stereo-plan");
+  const std::string refine_boxes = take_option(args, "--refine-boxes");
+  const std::string detect_in = take_option(args, "--detect-in");
   const std::string half_turns = take_option(args, "--half-turns");
   const std::string edges = take_option(args, "--edges");
   if (!edges.empty()) settings.pose.dcd.thresholds = edge_thresholds_named(edges, "--edges");
@@ -62,6 +64,14 @@ PickOptions take_pick_options(std::vector<std::string>& args) {
   }
   if (!plan.empty() && !parse_stereo_plan(plan, settings.stereo_plan)) {
     throw InputError("option --stereo-plan", "must be full or roi, not '" + plan + "'");
+  }
+  if (!refine_boxes.empty()) {
+    if (refine_boxes != "on" && refine_boxes != "off") throw InputError("option --refine-boxes", "must be on or off");
+    settings.refine_boxes = refine_boxes == "on";
+  }
+  if (!detect_in.empty()) {
+    if (detect_in != "image" && detect_in != "bin") throw InputError("option --detect-in", "must be image or bin");
+    settings.detect_in_bin = detect_in == "bin";
   }
   if (!half_turns.empty()) {
     if (half_turns != "on" && half_turns != "off") throw InputError("option --half-turns", "must be on or off");
@@ -138,10 +148,14 @@ std::string pick_options_help() {
        << "  --stereo-downscale N  match the pair at 1/N of its size (1..8, default 1):\n"
           "                     the matcher's time falls with N squared; detection and\n"
           "                     pose keep the full image\n"
-          "  --stereo-plan full|roi  what is matched: the whole pair (full, default), or\n"
-          "                     the bin alone over its disparity range, found in a match\n"
-          "                     at 1/8 size (roi; the rest keeps that coarse match);\n"
+          "  --stereo-plan roi|full  what is matched: the bin alone over its disparity\n"
+          "                     range, found in a match at 1/8 size (roi, default; the\n"
+          "                     rest keeps that coarse match), or the whole pair (full);\n"
           "                     --stereo-downscale applies to what is matched\n"
+          "  --detect-in image|bin  detection tiles over the whole image (default) or,\n"
+          "                     with --stereo-plan roi, over the bin found alone\n"
+          "  --refine-boxes on|off  with --stereo-downscale above 1, match each candidate's\n"
+          "                     box again at full size before it is posed (default on)\n"
           "  --edges E          pose edge thresholds: contrast+noise (default: each box's\n"
           "                     grey levels stretched, thresholds above its noise),\n"
           "                     fixed, contrast or noise (docs/pose.md)\n"

@@ -114,6 +114,28 @@ Json first_pick_json(const PickResult& result, const AcceptanceRule& rule) {
           {"t_mm", t}};
 }
 
+// What was matched at which size, the bin found and the boxes matched again.
+Json stereo_plan_json(const PickResult& result) {
+  Json plan = {{"plan", stereo_plan_name(result.stereo_plan)},
+               {"downscale", result.stereo_downscale},
+               {"refined_boxes", result.refined_boxes}};
+  if (result.stereo_plan == StereoPlan::kBinRegion) {
+    const BinRegion& bin = result.bin_region;
+    plan["bin_region"] = {{"found", bin.found},
+                          {"rect", {bin.rect.x, bin.rect.y, bin.rect.width, bin.rect.height}},
+                          {"disparity_range", {bin.range.min, bin.range.max}}};
+  }
+  return plan;
+}
+
+Json detection_tiles_json(const TilingPlan& tiling) {
+  Json tiles = {{"tile", tiling.tile}, {"stride", tiling.stride}};
+  if (!tiling.region.empty()) {
+    tiles["region"] = {tiling.region.x, tiling.region.y, tiling.region.width, tiling.region.height};
+  }
+  return tiles;
+}
+
 }  // namespace
 
 std::string pick_json(const PickResult& result, const PickInputsDescription& inputs) {
@@ -163,7 +185,8 @@ std::string pick_json(const PickResult& result, const PickInputsDescription& inp
       {"detector", result.detector_path},
       {"floor_depth_mm", result.floor_depth_mm},
       {"detections", result.detections.size()},
-      {"detection_tiles", {{"tile", result.detection_tiling.tile}, {"stride", result.detection_tiling.stride}}},
+      {"stereo_plan", stereo_plan_json(result)},
+      {"detection_tiles", detection_tiles_json(result.detection_tiling)},
       {"seconds", {{"stereo", s.stereo}, {"depth", s.depth}, {"detection", s.detection}, {"pose", s.pose},
                    {"ranking", s.ranking}, {"total", s.total()}}},
       {"seconds_to_first_pick", result.seconds_to_first_pick},

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
@@ -219,9 +220,12 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   auto start = pick_start;
   ProgressCallback progress;
   if (!settings.quiet) progress = [](const std::string& stage) { std::cerr << "  stereo: " << stage << "\n"; };
-  result.disparity = pick_disparity(impl_->stereo, left_rgb8, right_rgb8, rig, settings.stereo, settings.stereo_plan,
-                                    settings.stereo_downscale, progress, &result.stereo_path)
-                         .disparity;
+  PickDisparity matched = pick_disparity(impl_->stereo, left_rgb8, right_rgb8, rig, settings.stereo,
+                                         settings.stereo_plan, settings.stereo_downscale, progress, &result.stereo_path);
+  result.disparity = std::move(matched.disparity);
+  result.bin_region = matched.region;
+  result.stereo_plan = settings.stereo_plan;
+  result.stereo_downscale = settings.stereo_downscale;
   result.seconds.stereo = seconds_since(start);
 
   start = Clock::now();
@@ -236,6 +240,8 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   cv::Mat bgr;
   cv::cvtColor(texture_left_rgb8.empty() ? left_rgb8 : texture_left_rgb8, bgr, cv::COLOR_RGB2BGR);
   result.detection_tiling = detection_tiling(bgr.size(), result.camera, result.depth_mm);
+  // Parts lie in the bin: outside it tiles would only find the table and the walls' tops.
+  if (settings.detect_in_bin && result.bin_region.found) result.detection_tiling.region = result.bin_region.rect;
   result.detections = detect_in_tiles([&](const cv::Mat& tile) { return impl_->detector.detect(tile); }, bgr,
                                       result.detection_tiling, settings.detector.iou_threshold);
   result.detector_path = impl_->detector.planned();
@@ -262,8 +268,21 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.mode = settings.mode;
   result.budget_ms = settings.budget_ms;
   result.acceptance = settings.acceptance;
+  PosingOptions posing = posing_options(settings, pick_start);
+  std::mutex stereo_mutex;  // one matcher (one OpenCL queue) for every posing thread
+  if (settings.refine_boxes && settings.stereo_downscale > 1 && !posing.depth_for_candidate) {
+    const StereoCamera full_rig = rig.resized_to(left_rgb8.cols, left_rgb8.rows);
+    posing.depth_for_candidate = [&](const cv::Rect& box, const cv::Mat& scene_depth_mm) {
+      const std::lock_guard<std::mutex> lock(stereo_mutex);
+      cv::Mat disparity = result.disparity.clone(), depth_mm = scene_depth_mm.clone();
+      const RegionCrop crop = refine_pick_box(impl_->stereo, left_rgb8, right_rgb8, full_rig, settings.stereo, box,
+                                              0.0, disparity, depth_mm);
+      if (!crop.left.empty()) ++result.refined_boxes;
+      return depth_mm;
+    };
+  }
   result.posing = pose_in_cheap_order({bgr, result.depth_mm, result.camera, result.floor_depth_mm}, proposals,
-                                      impl_->models, posing_options(settings, pick_start));
+                                      impl_->models, posing);
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();

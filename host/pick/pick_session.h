@@ -59,7 +59,18 @@ struct PickSettings {
   // Which pixels are matched (host/pick/pick_stereo.h): the whole pair (full), or the bin's
   // region alone over its disparity range, found in a match at 1/8 size (roi;
   // docs/pick.md, "Stereo where it matters"). stereo_downscale applies to what is matched.
-  StereoPlan stereo_plan = StereoPlan::kFull;
+  // roi: on the development bins the same pose recall and first picks as full in 0.4x
+  // the matcher's time (docs/pick.md, "At a robot's pace").
+  StereoPlan stereo_plan = StereoPlan::kBinRegion;
+  // With the pair matched coarser than its size (stereo_downscale > 1), each candidate's
+  // box is matched again at full size before it is posed (refine_pick_box in
+  // host/pick/pick_stereo.h): the coarse match finds the bin and orders the candidates,
+  // the few posed get full-resolution depth.
+  bool refine_boxes = true;
+  // With the bin's region (StereoPlan::kBinRegion), detection tiles cover it alone: 4x
+  // faster detection, but on the development bins mAP@0.5 fell from 0.50 to 0.40 (pose
+  // recall 66.1 -> 67.9 %), so it is off by default (docs/pick.md, "At a robot's pace").
+  bool detect_in_bin = false;
   // Parts segmented from the depth above the bin floor that no network box matches are
   // posed too (host/pick/depth_proposals.h).
   bool depth_proposals = false;
@@ -108,6 +119,10 @@ struct PickResult {
   bool depth_proposals_run = false;
   DepthProposals depth;
   TilingPlan detection_tiling;  // the tiles detection ran on (tile 0: the whole image)
+  StereoPlan stereo_plan = StereoPlan::kFull;  // what was matched, at 1/stereo_downscale
+  int stereo_downscale = 1;
+  BinRegion bin_region;         // StereoPlan::kBinRegion: the bin found (found false otherwise)
+  int refined_boxes = 0;        // candidates' boxes matched again at full size (refine_boxes)
   PickStageSeconds seconds;
   std::string stereo_path, detector_path;  // which backend each ran on
   std::string namer_path;                  // the namer's model; empty without one

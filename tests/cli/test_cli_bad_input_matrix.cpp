@@ -302,6 +302,12 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
            "junk.tpl --stereo-plan half -o " + d + "existing.json",
        "--stereo-plan"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --refine-boxes sometimes -o " + d + "existing.json",
+       "--refine-boxes"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
+           "junk.tpl --detect-in bins -o " + d + "existing.json",
+       "--detect-in"},
+      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
            "junk.tpl --half-turns maybe -o " + d + "existing.json",
        "--half-turns"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +

@@ -205,6 +205,43 @@ TEST_F(PickSessionApi, FirstPickModeAnswersAWellRankedPartOfTheWholeRunWhateverT
   for (std::size_t i = 0; i < first.picks.size(); ++i) expect_same_pick(first_alone.picks[i], first.picks[i]);
 }
 
+// Matched coarse (the bin's region at half size), every candidate posed gets its box
+// matched again at full size first, and is posed with that depth; with refine_boxes off
+// none is.
+TEST_F(PickSessionApi, CoarseStereoRefinesTheBoxOfEveryCandidatePosed) {
+  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
+  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
+  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
+  const cv::Mat passive = load_rgb8(bin.left_passive);
+
+  PickSettings s = settings(bin);
+  s.stereo_plan = StereoPlan::kBinRegion;
+  s.stereo_downscale = 2;
+  PickSession refining(s);
+  const PickResult refined = refining.pick(pair.left, pair.right, rig, passive);
+  const std::vector<CandidateOutcome>& candidates = refined.posing.candidates;
+  ASSERT_FALSE(candidates.empty());
+  const auto posed = std::count_if(candidates.begin(), candidates.end(), [](const CandidateOutcome& c) { return c.posed; });
+  EXPECT_GT(posed, 0);
+  EXPECT_GE(refined.refined_boxes, posed);
+  EXPECT_LE(refined.refined_boxes, static_cast<int>(candidates.size()));
+
+  s.refine_boxes = false;
+  PickSession coarse_only(s);
+  const PickResult coarse = coarse_only.pick(pair.left, pair.right, rig, passive);
+  EXPECT_EQ(coarse.refined_boxes, 0);
+  // The same boxes in the same order (the cheap order reads the coarse depth), posed with
+  // other depth: not every pose comes out the same.
+  ASSERT_EQ(coarse.posing.candidates.size(), candidates.size());
+  ASSERT_FALSE(refined.proposals.empty());
+  ASSERT_FALSE(coarse.proposals.empty());
+  bool some_pose_differs = refined.proposals.size() != coarse.proposals.size();
+  for (std::size_t i = 0; !some_pose_differs && i < refined.proposals.size(); ++i) {
+    some_pose_differs = refined.proposals[i].pose.t != coarse.proposals[i].pose.t;
+  }
+  EXPECT_TRUE(some_pose_differs);
+}
+
 // A cell's templates may hold its parts alone; a known part without templates or CAD
 // model, or not a class of the detector, is refused naming --parts.
 TEST_F(PickSessionApi, KnownPartsNeedTheirOwnTemplatesOnly) {
