@@ -270,6 +270,7 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
   result.acceptance = settings.acceptance;
   PosingOptions posing = posing_options(settings, pick_start);
   std::mutex stereo_mutex;  // one matcher (one OpenCL queue) for every posing thread
+  std::vector<cv::Rect> refined;  // the boxes matched again
   if (settings.refine_boxes && settings.stereo_downscale > 1 && !posing.depth_for_candidate) {
     const StereoCamera full_rig = rig.resized_to(left_rgb8.cols, left_rgb8.rows);
     posing.depth_for_candidate = [&](const cv::Rect& box, const cv::Mat& scene_depth_mm) {
@@ -277,12 +278,17 @@ PickResult PickSession::pick(const cv::Mat& left_rgb8, const cv::Mat& right_rgb8
       cv::Mat disparity = result.disparity.clone(), depth_mm = scene_depth_mm.clone();
       const RegionCrop crop = refine_pick_box(impl_->stereo, left_rgb8, right_rgb8, full_rig, settings.stereo, box,
                                               0.0, disparity, depth_mm);
-      if (!crop.left.empty()) ++result.refined_boxes;
+      if (!crop.left.empty()) refined.push_back(box);
       return depth_mm;
     };
   }
   result.posing = pose_in_cheap_order({bgr, result.depth_mm, result.camera, result.floor_depth_mm}, proposals,
                                       impl_->models, posing);
+  // Counted over the candidates in the result only: a later one may have been begun while
+  // the first pick was decided (which depends on the threads' timing).
+  for (const CandidateOutcome& c : result.posing.candidates) {
+    if (c.posed && std::find(refined.begin(), refined.end(), c.candidate.box) != refined.end()) ++result.refined_boxes;
+  }
   result.seconds.pose = seconds_since(start);
 
   start = Clock::now();

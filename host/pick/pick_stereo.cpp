@@ -57,8 +57,8 @@ PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, co
   // The bin found in a coarse match of the whole pair; that match stays outside it.
   StereoParams region_params = params;
   region_params.coarsest_width = bin_plan.coarsest_width;
-  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, region_params, bin_plan.search_downscale,
-                                     progress, path);
+  const int search_downscale = std::clamp(left_rgb8.cols / bin_plan.min_search_width, 1, bin_plan.search_downscale);
+  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, region_params, search_downscale, progress, path);
   out.region = find_bin_region(out.disparity, rig.resized_to(left_rgb8.cols, left_rgb8.rows), params.ndisp,
                                bin_plan.region);
   if (progress) progress("the bin's region");

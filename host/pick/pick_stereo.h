@@ -24,6 +24,9 @@ struct BinRegionPlan {
   // The whole pair is matched at 1/search_downscale to find the bin: 1/8 of 1280 x 960
   // still shows the floor and the walls (1/16 lost parts of the range on dev bins).
   int search_downscale = 8;
+  // ... but the searched pair stays at least this wide: a 640 x 480 pair at 1/8 (80 px)
+  // no longer shows the walls, and its region came out as the whole image.
+  int min_search_width = 160;
   // The matcher's coarsest level is at most this wide in both matches
   // (StereoParams::coarsest_width). Both images are a few hundred pixels wide or less, so
   // with the pair's 128 px the coarsest level, which starts from random planes with the

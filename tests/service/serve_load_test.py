@@ -39,9 +39,10 @@ def run(cmd, **kw):
 
 
 def without_timings(value):
-    """PICKS.json without its measured times: 'seconds' objects and the *_ms keys."""
+    """PICKS.json without its measured times: the 'seconds*' keys and the *_ms keys."""
     if isinstance(value, dict):
-        return {k: without_timings(v) for k, v in value.items() if k != "seconds" and not k.endswith("_ms")}
+        return {k: without_timings(v) for k, v in value.items()
+                if not k.startswith("seconds") and not k.endswith("_ms")}
     if isinstance(value, list):
         return [without_timings(v) for v in value]
     return value
