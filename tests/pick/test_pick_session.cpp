@@ -66,6 +66,23 @@ class PickSessionApi : public ::testing::Test {
     return s;
   }
 
+  // The suite's bin: its files, the pair, its calibration at the pair's size and the view
+  // without the pattern.
+  struct LoadedBin {
+    MiddEval3Files files;
+    StereoPair pair;
+    StereoCamera rig;
+    cv::Mat passive;
+  };
+  static LoadedBin load_bin() {
+    LoadedBin b;
+    b.files = middeval3_files(*dir_ / "bins" / "bin000");
+    b.pair = load_stereo_pair(b.files.left, b.files.right);
+    b.rig = read_stereo_camera(b.files.calib).resized_to(b.pair.left.cols, b.pair.left.rows);
+    b.passive = load_rgb8(b.files.left_passive);
+    return b;
+  }
+
   static fs::path* dir_;
 };
 fs::path* PickSessionApi::dir_ = nullptr;
@@ -83,10 +100,7 @@ void expect_same_pick(const PickCandidate& a, const PickCandidate& b) {
 }
 
 TEST_F(PickSessionApi, OneSessionServesTwoCallsWithTheSameRankedPicks) {
-  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
-  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
-  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
-  const cv::Mat passive = load_rgb8(bin.left_passive);
+  const auto [bin, pair, rig, passive] = load_bin();
 
   PickSession session(settings(bin));
   const PickResult first = session.pick(pair.left, pair.right, rig, passive);
@@ -115,10 +129,7 @@ TEST_F(PickSessionApi, OneSessionServesTwoCallsWithTheSameRankedPicks) {
 // proposed from the depth included. (Whether the
 // poses are right is eval-pick's to measure: this 480x360 bin is too small for that.)
 TEST_F(PickSessionApi, KnownPartsAreTheOnlyOnesDetectedAndPosed) {
-  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
-  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
-  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
-  const cv::Mat passive = load_rgb8(bin.left_passive);
+  const auto [bin, pair, rig, passive] = load_bin();
 
   PickSession every(settings(bin));
   const PickResult all = every.pick(pair.left, pair.right, rig, passive);
@@ -157,10 +168,7 @@ bool same_pose(const PickCandidate& a, const PickCandidate& b) {
 // on one thread as on two (the answer waits for the candidates before it, whatever the
 // timing). The mode is set per call, as a service would.
 TEST_F(PickSessionApi, FirstPickModeAnswersAWellRankedPartOfTheWholeRunWhateverTheThreads) {
-  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
-  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
-  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
-  const cv::Mat passive = load_rgb8(bin.left_passive);
+  const auto [bin, pair, rig, passive] = load_bin();
 
   // The whole run (--all): its ranking does not depend on the acceptance rule.
   PickSession session(settings(bin));
@@ -209,10 +217,7 @@ TEST_F(PickSessionApi, FirstPickModeAnswersAWellRankedPartOfTheWholeRunWhateverT
 // matched again at full size first, and is posed with that depth; with refine_boxes off
 // none is.
 TEST_F(PickSessionApi, CoarseStereoRefinesTheBoxOfEveryCandidatePosed) {
-  const MiddEval3Files bin = middeval3_files(*dir_ / "bins" / "bin000");
-  const StereoPair pair = load_stereo_pair(bin.left, bin.right);
-  const StereoCamera rig = read_stereo_camera(bin.calib).resized_to(pair.left.cols, pair.left.rows);
-  const cv::Mat passive = load_rgb8(bin.left_passive);
+  const auto [bin, pair, rig, passive] = load_bin();
 
   PickSettings s = settings(bin);
   s.stereo_plan = StereoPlan::kBinRegion;
