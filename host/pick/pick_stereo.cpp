@@ -46,6 +46,10 @@ cv::Mat disparity_at_scale(StereoBackend& stereo, const cv::Mat& left, const cv:
   return upsample_disparity(result.disparity, result.planes_left, left.size());
 }
 
+int bin_search_downscale(int pair_width, const BinRegionPlan& plan) {
+  return std::clamp(pair_width / std::max(1, plan.min_search_width), 1, std::max(1, plan.search_downscale));
+}
+
 PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, const cv::Mat& right_rgb8,
                              const StereoCamera& rig, const StereoParams& params, StereoPlan plan, int downscale,
                              const ProgressCallback& progress, std::string* path, const BinRegionPlan& bin_plan) {
@@ -57,8 +61,8 @@ PickDisparity pick_disparity(StereoBackend& stereo, const cv::Mat& left_rgb8, co
   // The bin found in a coarse match of the whole pair; that match stays outside it.
   StereoParams region_params = params;
   region_params.coarsest_width = bin_plan.coarsest_width;
-  const int search_downscale = std::clamp(left_rgb8.cols / bin_plan.min_search_width, 1, bin_plan.search_downscale);
-  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, region_params, search_downscale, progress, path);
+  out.disparity = disparity_at_scale(stereo, left_rgb8, right_rgb8, region_params,
+                                     bin_search_downscale(left_rgb8.cols, bin_plan), progress, path);
   out.region = find_bin_region(out.disparity, rig.resized_to(left_rgb8.cols, left_rgb8.rows), params.ndisp,
                                bin_plan.region);
   if (progress) progress("the bin's region");

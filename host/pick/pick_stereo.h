@@ -35,6 +35,10 @@ struct BinRegionPlan {
   BinRegionOptions region;
 };
 
+// The downscale the whole pair is searched at for the bin: plan.search_downscale, less
+// where the pair would come out narrower than plan.min_search_width.
+int bin_search_downscale(int pair_width, const BinRegionPlan& plan);
+
 // "full" or "roi"; false for another name.
 bool parse_stereo_plan(const std::string& name, StereoPlan& plan);
 const char* stereo_plan_name(StereoPlan plan);

@@ -176,7 +176,8 @@ TEST_F(BoxRefinementOnABin, TheBinsRegionIsMatchedOverItsRangeAndTheRestKeepsThe
   const PickDisparity roi = pick_disparity(stereo_, left_, right_, rig, params_, StereoPlan::kBinRegion, 1);
   StereoParams search_params = params_;
   search_params.coarsest_width = plan.coarsest_width;
-  const cv::Mat search = disparity_at_scale(stereo_, left_, right_, search_params, plan.search_downscale, {}, nullptr);
+  const cv::Mat search = disparity_at_scale(stereo_, left_, right_, search_params,
+                                            bin_search_downscale(left_.cols, plan), {}, nullptr);
   ASSERT_EQ(roi.disparity.size(), left_.size());
   EXPECT_TRUE(roi.region.found);
   EXPECT_LT(roi.region.range.count(), params_.ndisp);
