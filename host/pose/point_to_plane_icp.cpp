@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <nanoflann.hpp>
 #include <stdexcept>
 #include <string>
@@ -92,19 +93,39 @@ struct PointToPlaneIcp::Model {
     std::vector<Pair> pairs;
     if (points.empty()) return pairs;
     const Eigen::Matrix3d Rt = pose.R.transpose();
-    const double gate_squared = gate * gate;
+    const float bound = search_bound(gate * gate);
+    // A scene point this far from the ball has no model point within the gate; a
+    // millimetre of slack covers the float rounding of the tree's distances.
+    const double reach = radius + gate + 1.0;
+    const double reach_squared = reach * reach;
     for (const Eigen::Vector3f& p : scene) {
       if (!p.allFinite()) continue;
       const Eigen::Vector3d q = Rt * (p.cast<double>() - pose.t);
+      if ((q - centre).squaredNorm() > reach_squared) continue;
       const Eigen::Vector3f query = q.cast<float>();
       std::uint32_t nearest = 0;
       float distance_squared = 0.0f;
-      if (tree.knnSearch(query.data(), 1, &nearest, &distance_squared) == 1 &&
-          distance_squared <= gate_squared) {
-        pairs.push_back({q, nearest});
-      }
+      // Searched with the gate as the worst distance from the start, the tree prunes
+      // every cell beyond it: the same nearest point when one lies within the gate,
+      // none otherwise, for a fraction of the visits (most scene points of a box are
+      // the floor and the neighbours, far from the model).
+      nanoflann::KNNResultSet<float, std::uint32_t> nearest_within_gate(1);
+      nearest_within_gate.init(&nearest, &distance_squared);
+      distance_squared = bound;
+      tree.findNeighbors(nearest_within_gate, query.data(), nanoflann::SearchParams());
+      if (nearest_within_gate.size() == 1) pairs.push_back({q, nearest});
     }
     return pairs;
+  }
+
+  // The float d that keeps exactly the tree distances (floats) at most `gate_squared`
+  // by the tree's own test, distance < d.
+  static float search_bound(double gate_squared) {
+    float largest_within = static_cast<float>(gate_squared);
+    if (static_cast<double>(largest_within) > gate_squared) {
+      largest_within = std::nextafter(largest_within, -std::numeric_limits<float>::infinity());
+    }
+    return std::nextafter(largest_within, std::numeric_limits<float>::infinity());
   }
 
   double residual(const Pair& pair) const {
