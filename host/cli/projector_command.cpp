@@ -39,6 +39,9 @@ void print_help() {
                "  --min-margin M        best minus the best elsewhere (default 0.1)\n"
                "  --peak K              candidates either side of the best that belong to its peak (default 4)\n"
                "  --min-texture T       least spread of the window's projector light, grey levels (default 1)\n"
+               "  --slanted             also try windows of slanted surfaces (s_x 0, 0.5, 1; s_y -1, 0, 1)\n"
+               "  --visibility          skip candidates the stereo result rules out: in front of\n"
+               "                        what the right camera sees there, or in a projector shadow\n"
                "  --state STATE.png     0 not asked, 128 not distinct, 255 decoded\n"
                "calibrate: estimates the pattern from the confident stereo matches of the scenes,\n"
                "for a projector on the baseline; writes OUT_DIR/calib.txt (the first scene's with\n"
@@ -88,6 +91,8 @@ int run_decode(std::vector<std::string>& args) {
   params.min_margin = take_number_option(args, "--min-margin", params.min_margin);
   params.peak_halfwidth = int(take_number_option(args, "--peak", params.peak_halfwidth));
   params.min_texture = take_number_option(args, "--min-texture", params.min_texture);
+  params.slanted = take_flag(args, "--slanted");
+  params.visibility = take_flag(args, "--visibility");
   reject_unknown_options(args);
   if (args.size() != 1) throw InputError("projector decode", "expected one SCENE folder");
   if (stereo_dir.empty()) throw InputError("option --stereo", "is required");
@@ -109,7 +114,8 @@ int run_decode(std::vector<std::string>& args) {
 
   const cv::Mat asked = left_right_failures(scene.raw_left, scene.raw_right, params.lr_tolerance);
   const ProjectorDecodeResult result = decode_with_projector(scene.left, scene.disparity, asked, scene.calib,
-                                                             *with_projector.projector, pattern, params);
+                                                             *with_projector.projector, pattern, params,
+                                                             scene.raw_left, scene.raw_right);
   write_pfm(out, result.disparity);
   if (!state_png.empty()) {
     cv::Mat picture = result.state.clone();
@@ -165,6 +171,8 @@ int run_calibrate(std::vector<std::string>& args) {
   const ProjectorCalib projector = projector_on_baseline(scenes[0].calib, fov, offset, "projector_pattern.png");
   const PatternEstimate estimate = estimate_pattern(views, projector);
   std::printf("even/odd agreement at offset %.1f mm: %.3f\n", offset, split_agreement(views, projector));
+  std::printf("coverage: %.1f %% of the pattern the left camera can reach\n",
+              100.0 * pattern_coverage(estimate, scenes[0].calib, projector));
   if (scenes[0].calib.projector) {  // a known pattern: how close the estimate came
     const cv::Mat truth = load_pattern(*scenes[0].calib.projector);
     if (truth.size() == estimate.mean.size()) {

@@ -80,6 +80,18 @@ PatternEstimate estimate_pattern(const std::vector<CalibrationView>& views, cons
   return estimate;
 }
 
+double pattern_coverage(const PatternEstimate& estimate, const MiddleburyCalib& calib,
+                        const ProjectorCalib& projector, double min_weight) {
+  const LeftCamera camera(calib);
+  const cv::Mat inside(estimate.weight.size(), CV_32FC1, cv::Scalar(1));
+  const VirtualView reach = make_virtual_view(camera, projector, inside);
+  const VirtualView covered = make_virtual_view(camera, projector, estimate.weight);
+  const cv::Mat reachable = reach.samples > 0.999f;
+  const int needed = cv::countNonZero(reachable);
+  const int have = cv::countNonZero(reachable & (covered.samples >= float(min_weight)));
+  return needed ? double(have) / needed : 0.0;
+}
+
 double pattern_agreement(const cv::Mat& a, const cv::Mat& a_weight, const cv::Mat& b, const cv::Mat& b_weight,
                          double min_weight) {
   double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;

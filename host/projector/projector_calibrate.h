@@ -41,6 +41,12 @@ struct PatternEstimate {
 PatternEstimate estimate_pattern(const std::vector<CalibrationView>& views, const ProjectorCalib& projector,
                                  float min_disparity = -1e30f, float max_disparity = 1e30f);
 
+// The share of the pattern a decoder can need that the estimate covers: of the pattern
+// pixels the left camera's rows can reach at some disparity (the virtual view,
+// projector_view.h), those with weight at least min_weight.
+double pattern_coverage(const PatternEstimate& estimate, const MiddleburyCalib& calib,
+                        const ProjectorCalib& projector, double min_weight = 0.5);
+
 // ZNCC of two patterns over the pixels where both weights are at least min_weight.
 double pattern_agreement(const cv::Mat& a, const cv::Mat& a_weight, const cv::Mat& b, const cv::Mat& b_weight,
                          double min_weight = 0.5);

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "host/projector/projector_view.h"
+#include "host/projector/projector_visibility.h"
 
 namespace flexsight {
 
@@ -20,6 +21,13 @@ struct ProjectorDecodeParams {
   int peak_halfwidth = 4;       // candidates (of B / (2 |tx|) px of disparity) that count as the peak
   float lr_tolerance = 1.0f;    // px: the left/right check that picks the pixels to decode
   double min_texture = 1.0;     // grey levels: the left window's spread below which nothing is decoded
+  // Slanted windows: besides the fronto-parallel window, surfaces whose disparity changes
+  // by s_x per pixel along the row (0.5, 1: the sides the right camera sees at a grazing
+  // angle) and s_y per pixel down the column (-1, 1) are tried; the best counts.
+  bool slanted = false;
+  // Refuse candidates the stereo result rules out (projector_visibility.h).
+  bool visibility = false;
+  float visibility_tolerance = 2.0f;  // px
 };
 
 // The projector's light in an RGB8 image: red minus the mean of green and blue, so that
@@ -39,10 +47,11 @@ struct PixelDecode {
   }
 };
 
-// The search at one left pixel of `channel` (laser_channel of the left image).
+// The search at one left pixel of `channel` (laser_channel of the left image); with
+// `visibility`, the candidates it rules out are skipped.
 PixelDecode decode_pixel(const cv::Mat& channel, int u, int v, const LeftCamera& camera,
                          const ProjectorCalib& projector, const VirtualView& view,
-                         const ProjectorDecodeParams& params);
+                         const ProjectorDecodeParams& params, const StereoVisibility* visibility = nullptr);
 
 struct ProjectorDecodeResult {
   cv::Mat disparity;  // the input disparity with the decoded pixels replaced (CV_32FC1)
@@ -50,10 +59,12 @@ struct ProjectorDecodeResult {
   int asked = 0, decoded = 0;
 };
 
-// Decodes the pixels of `asked` (CV_8UC1, non-zero) in the left image.
+// Decodes the pixels of `asked` (CV_8UC1, non-zero) in the left image; params.visibility
+// needs the raw disparities (else they may be empty).
 ProjectorDecodeResult decode_with_projector(const cv::Mat& left_rgb8, const cv::Mat& disparity,
                                             const cv::Mat& asked, const MiddleburyCalib& calib,
                                             const ProjectorCalib& projector, const cv::Mat& pattern,
-                                            const ProjectorDecodeParams& params = {});
+                                            const ProjectorDecodeParams& params = {},
+                                            const cv::Mat& raw_left = {}, const cv::Mat& raw_right = {});
 
 }  // namespace flexsight

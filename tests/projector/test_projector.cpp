@@ -14,6 +14,7 @@
 #include "host/io/pfm.h"
 #include "host/projector/projector_calibrate.h"
 #include "host/projector/projector_decode.h"
+#include "host/projector/projector_visibility.h"
 #include "tests/cli/cli_test_support.h"
 
 namespace {
@@ -108,6 +109,46 @@ TEST_F(ProjectorBin, EstimatesThePatternFromKnownDisparities) {
   const double true_pose = split_agreement(views, at_middle);
   const double off = split_agreement(views, projector_on_baseline(calib, 35.0, 40.0, ""));
   EXPECT_LT(2.0 * (1.0 - true_pose), 1.0 - off) << true_pose << " vs " << off;
+}
+
+TEST_F(ProjectorBin, CoverageGrowsWithTheScenesPooled) {
+  const MiddleburyCalib calib = read_middlebury_calib((bin() / "calib.txt").string());
+  std::vector<CalibrationView> views;
+  for (const char* name : {"bin000", "bin001"}) {
+    const fs::path folder = *dir_ / "bins" / name;
+    const cv::Mat truth = read_pfm((folder / "disp0GT.pfm").string());
+    views.push_back(calibration_view(load_rgb8((folder / "im0.png").string()), truth, cv::abs(truth) < 1e6f, calib));
+  }
+  const ProjectorCalib at_middle = projector_on_baseline(calib, 35.0, 0.0, "");
+  const double one = pattern_coverage(estimate_pattern({views[0]}, at_middle), calib, at_middle);
+  const double both = pattern_coverage(estimate_pattern(views, at_middle), calib, at_middle);
+  EXPECT_GT(one, 0.2);
+  EXPECT_LT(one, 1.0);
+  EXPECT_GT(both, one);
+}
+
+// A flat surface at disparity 40 that both views agree on: a candidate nearer the cameras
+// stands in front of what the right camera sees; one farther lies in the surface's
+// projector shadow; the surface itself is possible.
+TEST(StereoVisibility, RulesOutFreeSpaceAndShadowOfAPlane) {
+  MiddleburyCalib calib;
+  calib.cam0 = {500, 0, 160, 0, 500, 120, 0, 0, 1};
+  calib.cam1 = {500, 0, 160, 0, 500, 120, 0, 0, 1};
+  calib.baseline_mm = 500;
+  calib.width = 320;
+  calib.height = 240;
+  calib.ndisp = 96;
+  const ProjectorCalib projector = projector_on_baseline(calib, 35.0, 0.0, "");
+  const LeftCamera camera(calib);
+  const cv::Mat pattern(projector.height, projector.width, CV_32FC1, cv::Scalar(0.5));
+  const VirtualView view = make_virtual_view(camera, projector, pattern);
+  const cv::Mat plane(240, 320, CV_32FC1, cv::Scalar(40));
+  const StereoVisibility visibility(plane, plane, camera, projector, view, 2.0f);
+  EXPECT_TRUE(visibility.possible(200, 100, 40.0));
+  EXPECT_TRUE(visibility.in_free_space(200, 100, 50.0));
+  EXPECT_FALSE(visibility.in_shadow(200, 100, 50.0));
+  EXPECT_TRUE(visibility.in_shadow(200, 100, 30.0));
+  EXPECT_FALSE(visibility.in_free_space(200, 100, 30.0));
 }
 
 TEST_F(ProjectorBin, DecodeRefusesACalibrationWithoutProjector) {
