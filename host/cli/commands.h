@@ -20,5 +20,6 @@ int run_pick_command(std::vector<std::string> args);
 int run_eval_pick_command(std::vector<std::string> args);
 int run_serve_command(std::vector<std::string> args);
 int run_sensor_plan_command(std::vector<std::string> args);
+int run_projector_command(std::vector<std::string> args);
 
 }  // namespace flexsight

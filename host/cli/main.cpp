@@ -27,6 +27,7 @@ void print_usage() {
                "  eval-pick BINS_DIR --out DIR --templates T  pick on simulated bins, scored against their truth\n"
                "  serve --templates T [--port P] [options]  pick as a warm HTTP service (docs/serve.md)\n"
                "  sensor-plan [options] [-o DIR]            camera/projector placement: coverage, depth resolution\n"
+               "  projector decode|calibrate ...            the projector as a third view (docs/projector.md)\n"
                "  devices                                   list the OpenCL platforms and devices\n"
                "Run 'flexsight <command> --help' for the options of a command.\n";
 }
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
     if (command == "serve") return flexsight::run_serve_command(args);
     if (command == "pose-templates") return flexsight::run_pose_templates_command(args);
     if (command == "sensor-plan") return flexsight::run_sensor_plan_command(args);
+    if (command == "projector") return flexsight::run_projector_command(args);
     if (command == "--help" || command == "-h" || command == "help") {
       print_usage();
       return 0;

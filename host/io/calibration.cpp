@@ -3,11 +3,14 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
+#include "host/io/image_header.h"
 #include "host/io/input_error.h"
 #include "host/io/io_helpers.h"
 
@@ -69,6 +72,28 @@ class MiddleburyFields {
   }
 
   bool has(const std::string& key) const { return values_.count(key) != 0; }
+
+  bool has_prefix(const std::string& prefix) const {
+    const auto it = values_.lower_bound(prefix);
+    return it != values_.end() && it->first.compare(0, prefix.size(), prefix) == 0;
+  }
+
+  const std::string& text(const std::string& key) const { return required(key); }
+  const std::string& path() const { return path_; }
+
+  // "[x y z]"
+  std::array<double, 3> vector3(const std::string& key) const {
+    const std::string& text = required(key);
+    const auto malformed = [&] { fail(key, "is not a vector like [x y z]: " + quoted(text)); };
+    if (text.size() < 2 || text.front() != '[' || text.back() != ']') malformed();
+    const std::vector<std::string> tokens = split_whitespace(text.substr(1, text.size() - 2));
+    if (tokens.size() != 3) malformed();
+    std::array<double, 3> v{};
+    for (int i = 0; i < 3; ++i) {
+      if (!parse_double(tokens[i], v[i])) malformed();
+    }
+    return v;
+  }
 
   double number(const std::string& key) const {
     double value = 0;
@@ -189,6 +214,67 @@ void require_positive(const MiddleburyFields& fields, const std::string& key, do
   }
 }
 
+// ---- The projector's optional lines ------------------------------------------------
+
+constexpr double kRotationTolerance = 1e-3;
+
+void require_rotation(const MiddleburyFields& fields, const std::array<double, 9>& R) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      double dot = 0;
+      for (int k = 0; k < 3; ++k) dot += R[3 * i + k] * R[3 * j + k];
+      if (std::abs(dot - (i == j ? 1.0 : 0.0)) > kRotationTolerance) {
+        fields.fail("projR", "is not a rotation (its rows are not orthonormal)");
+      }
+    }
+  }
+  const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                     R[2] * (R[3] * R[7] - R[4] * R[6]);
+  if (det < 0) fields.fail("projR", "is a reflection, not a rotation");
+}
+
+ProjectorCalib read_projector(const MiddleburyFields& fields) {
+  ProjectorCalib projector;
+  for (const char* key : {"proj", "projwidth", "projheight", "projt", "projpattern"}) {
+    if (!fields.has(key)) {
+      throw InputError(fields.path(), std::string("missing key '") + key +
+                                          "' (the projector entry needs proj, projwidth, projheight, projt, "
+                                          "projpattern)");
+    }
+  }
+  projector.K = fields.matrix3x3("proj");
+  projector.width = fields.integer("projwidth");
+  projector.height = fields.integer("projheight");
+  projector.t = fields.vector3("projt");
+  if (fields.has("projR")) projector.R = fields.matrix3x3("projR");
+  projector.pattern = fields.text("projpattern");
+  require_positive(fields, "projwidth", projector.width);
+  require_positive(fields, "projheight", projector.height);
+  const std::array<double, 9>& K = projector.K;
+  if (K[1] != 0 || K[3] != 0 || K[6] != 0 || K[7] != 0 || K[8] != 1 || !(K[0] > 0) || !(K[4] > 0)) {
+    fields.fail("proj", "is not a pinhole matrix [fx 0 cx; 0 fy cy; 0 0 1] with positive focal lengths");
+  }
+  if (!(K[2] >= 0 && K[2] <= projector.width) || !(K[5] >= 0 && K[5] <= projector.height)) {
+    fields.fail("proj", "has its principal point (" + number_text(K[2]) + ", " + number_text(K[5]) +
+                            ") outside the " + std::to_string(projector.width) + "x" +
+                            std::to_string(projector.height) + " pattern");
+  }
+  require_rotation(fields, projector.R);
+
+  const std::filesystem::path pattern(projector.pattern);
+  projector.pattern_path = (pattern.is_absolute() ? pattern
+                                                  : std::filesystem::path(fields.path()).parent_path() / pattern)
+                               .string();
+  const cv::Size size = image_size_from_header(projector.pattern_path);  // names the file
+  if (size.width != projector.width || size.height != projector.height) {
+    throw InputError(projector.pattern_path,
+                     "is " + std::to_string(size.width) + "x" + std::to_string(size.height) + ", but " +
+                         fields.path() + " gives the projector " + std::to_string(projector.width) + "x" +
+                         std::to_string(projector.height) + " (projwidth, projheight)");
+  }
+  return projector;
+}
+
 // ---- KITTI calibration: "NAME: n1 n2 ..." per line ----------------------------------
 
 struct KittiMatrixName {
@@ -250,7 +336,18 @@ MiddleburyCalib read_middlebury_calib(const std::string& path) {
   require_positive(fields, "height", calib.height);
   require_positive(fields, "ndisp", calib.ndisp);
   require_rectified_pair(fields, calib);
+  if (fields.has_prefix("proj")) calib.projector = read_projector(fields);
   return calib;
+}
+
+std::string projector_calib_text(const ProjectorCalib& p) {
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "proj=[%.3f 0 %.3f; 0 %.3f %.3f; 0 0 1]\nprojwidth=%d\nprojheight=%d\n"
+                "projR=[%.9g %.9g %.9g; %.9g %.9g %.9g; %.9g %.9g %.9g]\nprojt=[%.3f %.3f %.3f]\n",
+                p.K[0], p.K[2], p.K[4], p.K[5], p.width, p.height, p.R[0], p.R[1], p.R[2], p.R[3], p.R[4],
+                p.R[5], p.R[6], p.R[7], p.R[8], p.t[0], p.t[1], p.t[2]);
+  return std::string(text) + "projpattern=" + p.pattern + "\n";
 }
 
 KittiCalib read_kitti_calib(const std::string& path) {

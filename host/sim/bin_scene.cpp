@@ -272,6 +272,8 @@ BinViews BinSimulator::simulate(std::uint32_t seed, std::int64_t index) const {
     varied_pattern = std::make_unique<DotPattern>(projector);
   }
   const DotPattern& pattern = varied_pattern ? *varied_pattern : *pattern_;
+  views.projector = projector_calib(rig_, pattern.settings());
+  views.pattern = render_pattern_image(pattern, views.projector);
 
   // The scene: parts first (instance ids 0..n-1, the BOP gt ids), then bin and table.
   SynthRandom look(seed, index, kStreamLook);

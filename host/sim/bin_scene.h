@@ -11,6 +11,7 @@
 #include "host/dataset/annotated_image.h"
 #include "host/sim/bin_settings.h"
 #include "host/sim/bin_variation.h"
+#include "host/sim/projector_pattern.h"
 #include "host/synth/part_library.h"
 
 namespace flexsight {
@@ -35,6 +36,9 @@ struct BinViews {
   AnnotatedImage left;
   // How the bin looks: the settings' fixed values, or those drawn for it (--vary).
   BinVariation variation;
+  // The projector as calib.txt gives it and its pattern image (projector_pattern.h).
+  ProjectorCalib projector;
+  cv::Mat pattern;
   double physics_ms = 0.0, render_ms = 0.0;
 };
 

@@ -18,7 +18,7 @@ void write_bin_folder(const std::string& folder, const StereoRig& rig, const Bin
   auto file = [&](const char* name) { return folder + "/" + name; };
   write_atomically(file(middeval3::kCalib), [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary);
-    out << rig.calib_text();
+    out << rig.calib_text() << projector_calib_text(views.projector);
     if (!out.flush()) throw InputError(file(middeval3::kCalib), "cannot be written");
   });
   write_image(file(middeval3::kLeftImage), views.im0);
@@ -28,6 +28,7 @@ void write_bin_folder(const std::string& folder, const StereoRig& rig, const Bin
   write_pfm(file(middeval3::kLeftTruth), views.disp0);
   write_pfm(file(middeval3::kRightTruth), views.disp1);
   write_image(file(middeval3::kNonoccMask), views.nocc0);
+  write_image(file(kProjectorPatternFile), views.pattern);
 
   // The BOP writer lays out a split folder (root/<scene>/...); the bin folder is the
   // scene folder itself, so its one scene is written aside and moved up.

@@ -2,7 +2,9 @@
 // One bin's folder: a MiddEval3 stereo scene that `flexsight eval` reads, and the left
 // view as a BOP scene folder that the detection and pose evaluators read.
 //
-//   calib.txt                     cam0, cam1, doffs, baseline, width, height, ndisp
+//   calib.txt                     cam0, cam1, doffs, baseline, width, height, ndisp, and
+//                                 the projector (proj*, host/io/calibration.h)
+//   projector_pattern.png         the projector's pattern image (projector_pattern.h)
 //   im0.png, im1.png              with the projector's dots
 //   im0_passive.png, im1_passive.png   room light only
 //   disp0GT.pfm, disp1GT.pfm      disparities (+inf where no surface)

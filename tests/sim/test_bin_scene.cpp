@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 
 #include "host/dataset/bop_reader.h"
 #include "host/io/calibration.h"
@@ -137,6 +138,14 @@ TEST(BinScene, GroundTruthIsPhotoConsistentAndFilesReadBack) {
   EXPECT_EQ(calib.width, 320);
   EXPECT_EQ(calib.height, 240);
   EXPECT_EQ(calib.ndisp, rig.ndisp);
+  // The projector: at the middle of the baseline, the pattern beside calib.txt.
+  ASSERT_TRUE(calib.projector.has_value());
+  EXPECT_NEAR(calib.projector->t[0], -250.0, 1e-9);
+  EXPECT_NEAR(calib.projector->K[0], rig.focal(), 1e-3);
+  const cv::Mat pattern = cv::imread(calib.projector->pattern_path, cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(pattern.type(), CV_8UC1);
+  EXPECT_EQ(cv::norm(pattern, views.pattern, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::mean(pattern)[0], 5.0);  // dots, not an empty image
   const cv::Mat disp = read_pfm((dir / "disp0GT.pfm").string());
   EXPECT_EQ(cv::norm(disp, views.disp0, cv::NORM_INF), 0.0);
   const BopReader reader(dir.string());
