@@ -192,6 +192,12 @@ struct Case {
 
 TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
   const std::string d = dir_.string() + "/";
+  // pick on the fixture's good pair with the junk templates: OPTIONS checked before the
+  // output, which exists.
+  const auto pick_with = [&](const std::string& options) {
+    return "pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl " +
+           options + " -o " + d + "existing.json";
+  };
   const std::string pair = "stereo " + d + "left.png " + d + "right.png -o " + d + "existing.pfm";
   const std::string cad = FLEXSIGHT_TLESS_CAD_DIR;
   const std::vector<Case> cases = {
@@ -280,66 +286,28 @@ TEST_F(BadInputMatrix, EveryCommandRefusesBadInputAndTouchesNothing) {
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "doffs_calib.txt --templates " + d + "junk.tpl -o " +
            d + "existing.json",
        d + "doffs_calib.txt"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --model " +
-           d + "junk.onnx -o " + d + "existing.json",
-       d + "junk.onnx"},
+      {pick_with("--model " + d + "junk.onnx"), d + "junk.onnx"},
       {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl -o " + d +
            "existing.json",
        d + "junk.tpl"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --passive-left " +
-           d + "tiny_l.png -o " + d + "existing.json",
-       d + "tiny_l.png"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 12 -o " +
-           d + "existing.json",
-       "--tile"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --tile 64 -o " +
-           d + "existing.json",
-       "--tile", d + "left.png (64x48)"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --stereo-downscale 0 -o " + d + "existing.json",
-       "--stereo-downscale"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --stereo-plan half -o " + d + "existing.json",
-       "--stereo-plan"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --refine-boxes sometimes -o " + d + "existing.json",
-       "--refine-boxes"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --detect-in bins -o " + d + "existing.json",
-       "--detect-in"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --half-turns maybe -o " + d + "existing.json",
-       "--half-turns"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +
-           d + "nope.onnx -o " + d + "existing.json",
-       d + "nope.onnx"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d + "junk.tpl --namer " +
-           d + "junk.onnx -o " + d + "existing.json",
-       d + "junk.onnx"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --namer-mix maybe -o " + d + "existing.json",
-       "--namer-mix"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --retry-below 2 -o " + d + "existing.json",
-       "--retry-below"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --depth-proposals maybe -o " + d + "existing.json",
-       "--depth-proposals"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --budget-ms -5 -o " + d + "existing.json",
-       "--budget-ms"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --budget-ms soon -o " + d + "existing.json",
-       "--budget-ms"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --all yes -o " + d + "existing.json",
-       "--all", "yes"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --all=1 -o " + d + "existing.json",
-       "--all"},
-      {"pick " + d + "left.png " + d + "right.png --calib " + d + "calib.txt --templates " + d +
-           "junk.tpl --all --budget-ms 500 -o " + d + "existing.json",
-       "--budget-ms", "--all"},
+      {pick_with("--passive-left " + d + "tiny_l.png"), d + "tiny_l.png"},
+      {pick_with("--tile 12"), "--tile"},
+      {pick_with("--tile 64"), "--tile", d + "left.png (64x48)"},
+      {pick_with("--stereo-downscale 0"), "--stereo-downscale"},
+      {pick_with("--stereo-plan half"), "--stereo-plan"},
+      {pick_with("--refine-boxes sometimes"), "--refine-boxes"},
+      {pick_with("--detect-in bins"), "--detect-in"},
+      {pick_with("--half-turns maybe"), "--half-turns"},
+      {pick_with("--namer " + d + "nope.onnx"), d + "nope.onnx"},
+      {pick_with("--namer " + d + "junk.onnx"), d + "junk.onnx"},
+      {pick_with("--namer-mix maybe"), "--namer-mix"},
+      {pick_with("--retry-below 2"), "--retry-below"},
+      {pick_with("--depth-proposals maybe"), "--depth-proposals"},
+      {pick_with("--budget-ms -5"), "--budget-ms"},
+      {pick_with("--budget-ms soon"), "--budget-ms"},
+      {pick_with("--all yes"), "--all", "yes"},
+      {pick_with("--all=1"), "--all"},
+      {pick_with("--all --budget-ms 500"), "--budget-ms", "--all"},
       // eval-pick
       {"eval-pick " + d + "empty_folder --out " + d + "pick_out --templates " + d + "junk.tpl", d + "empty_folder"},
       {"eval-pick " + d + "nowhere --out " + d + "pick_out --templates " + d + "junk.tpl", d + "nowhere"},

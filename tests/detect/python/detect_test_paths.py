@@ -23,3 +23,13 @@ def models_dir_from_argv() -> Path:
         sys.exit("FAIL: shared model files missing under %s: %s" % (models, ", ".join(missing)))
     os.environ["FLEXSIGHT_DETECTION_MODELS"] = str(models)  # read by ssd_model at import
     return models
+
+
+def path_from_argv(name: str) -> Path:
+    """Pops `NAME VALUE` from sys.argv (before unittest parses it); a missing one fails."""
+    if name not in sys.argv:
+        sys.exit("usage: %s %s PATH ... [unittest options]" % (sys.argv[0], name))
+    i = sys.argv.index(name)
+    value = Path(sys.argv[i + 1])
+    del sys.argv[i:i + 2]
+    return value

@@ -14,7 +14,6 @@ AP@0.5: the shipped model's detections on the held-out fixture tless_synth_8 sco
 import json
 import shutil
 import subprocess
-import sys
 import unittest
 from pathlib import Path
 
@@ -23,24 +22,14 @@ import numpy as np
 from detect import anchors as anc
 from detect.coco_set import CocoSet
 from detect.detect_eval import average_precision_50, decode_detections
+from detect_test_paths import path_from_argv
 
 SOURCE = Path(__file__).resolve().parents[3]
 TINY = SOURCE / "tests/data/detect/tiny_ssd"
 HELD_OUT = SOURCE / "tests/data/detect/tless_synth_8"
 SHIPPED = SOURCE / "models/tless-ssd/model.onnx"
-
-
-def pop_arg(name: str) -> Path:
-    if name not in sys.argv:
-        sys.exit("usage: %s --flexsight BIN --work DIR [unittest options]" % sys.argv[0])
-    i = sys.argv.index(name)
-    value = Path(sys.argv[i + 1])
-    del sys.argv[i:i + 2]
-    return value
-
-
-FLEXSIGHT = pop_arg("--flexsight")
-WORK = pop_arg("--work")
+FLEXSIGHT = path_from_argv("--flexsight")
+WORK = path_from_argv("--work")
 
 
 def run(*arguments) -> None:

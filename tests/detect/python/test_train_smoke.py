@@ -3,27 +3,17 @@ of training (the training loss must fall), and every output of a run."""
 import csv
 import json
 import shutil
-import sys
 import unittest
-from pathlib import Path
 
-from detect_test_paths import models_dir_from_argv
+from detect_test_paths import models_dir_from_argv, path_from_argv
 
 MODELS = models_dir_from_argv()
 import subprocess  # noqa: E402
 
 from detect import train  # noqa: E402
 
-
-def pop_arg(name: str) -> Path:
-    i = sys.argv.index(name)
-    value = Path(sys.argv[i + 1])
-    del sys.argv[i:i + 2]
-    return value
-
-
-FLEXSIGHT = pop_arg("--flexsight")
-WORK = pop_arg("--work")
+FLEXSIGHT = path_from_argv("--flexsight")
+WORK = path_from_argv("--work")
 
 
 class TrainSmoke(unittest.TestCase):
