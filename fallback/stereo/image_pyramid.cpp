@@ -19,28 +19,28 @@ std::vector<float> view_color(const cv::Mat& rgb8) {
   return color;
 }
 
-ViewImage make_view_image(const cv::Mat& rgb8) {
+ViewImage make_view_image(const cv::Mat& rgb8, PmsCensusShape census) {
   ViewImage image;
   image.width = rgb8.cols;
   image.height = rgb8.rows;
   image.color = view_color(rgb8);
-  compute_gradient(image);
+  compute_gradient(image, census);
   return image;
 }
 
-void compute_gradient(ViewImage& image) {
+void compute_gradient(ViewImage& image, PmsCensusShape census) {
   image.gradient.assign(2 * static_cast<size_t>(image.pixels()), 0.0f);
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       pms_gradient_pixel(image.color.data(), image.width, image.height, x, y,
                          &image.gradient[2 * (static_cast<size_t>(y) * image.width + x)]);
       image.color[4 * (static_cast<size_t>(y) * image.width + x) + 3] =
-          pms_census_pixel(image.color.data(), image.width, image.height, x, y);
+          pms_census_pixel(image.color.data(), image.width, image.height, x, y, census);
     }
   }
 }
 
-ViewImage downsample(const ViewImage& fine) {
+ViewImage downsample(const ViewImage& fine, PmsCensusShape census) {
   ViewImage coarse;
   coarse.width = (fine.width + 1) / 2;
   coarse.height = (fine.height + 1) / 2;
@@ -51,7 +51,7 @@ ViewImage downsample(const ViewImage& fine) {
                            &coarse.color[4 * (static_cast<size_t>(y) * coarse.width + x)]);
     }
   }
-  compute_gradient(coarse);
+  compute_gradient(coarse, census);
   return coarse;
 }
 
@@ -65,11 +65,11 @@ int pyramid_level_count(int width, int height, int coarsest_width) {
   return levels;
 }
 
-std::vector<ViewImage> build_pyramid(const cv::Mat& rgb8, int levels) {
+std::vector<ViewImage> build_pyramid(const cv::Mat& rgb8, int levels, PmsCensusShape census) {
   std::vector<ViewImage> pyramid;
   pyramid.reserve(levels);
-  pyramid.push_back(make_view_image(rgb8));
-  for (int level = 1; level < levels; ++level) pyramid.push_back(downsample(pyramid.back()));
+  pyramid.push_back(make_view_image(rgb8, census));
+  for (int level = 1; level < levels; ++level) pyramid.push_back(downsample(pyramid.back(), census));
   return pyramid;
 }
 

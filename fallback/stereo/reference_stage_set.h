@@ -27,8 +27,9 @@ class ReferenceStageSet {
   // `threads`: OpenMP threads of every stage (at least 1).
   explicit ReferenceStageSet(int threads) : threads_(threads) {}
 
-  std::vector<View> build_pyramid(const cv::Mat& rgb8, int levels, int /*view*/) {
-    return flexsight::build_pyramid(rgb8, levels);
+  std::vector<View> build_pyramid(const cv::Mat& rgb8, int levels, int /*view*/,
+                                  PmsCensusShape census) {
+    return flexsight::build_pyramid(rgb8, levels, census);
   }
   template <class T>
   Array<T> array(size_t count, const char* /*what*/) {

@@ -57,6 +57,36 @@ ParamOption float_option(const char* name, float StereoParams::*field, const cha
           [field](const StereoParams& p) { return float_text(p.*field); }};
 }
 
+// --census-shape: ROWSxCOLS, or ROWSxCOLS+LENGTH for a longer centre row; "square" and
+// "row" name 5x5 and 1x25. Sizes are checked by StereoParams::check.
+ParamOption census_shape_option() {
+  return {"census-shape", "census neighbourhood ROWSxCOLS[+CENTRE_ROW_LENGTH] (square = 5x5, row = 1x25)",
+          [](StereoParams& p, const std::string& v) {
+            const std::string text = v == "square" ? "5x5" : v == "row" ? "1x25" : v;
+            const size_t times = text.find('x');
+            const size_t plus = text.find('+');
+            auto number = [&](size_t begin, size_t end) {
+              const std::string part =
+                  text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+              if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos) {
+                throw InputError(option_subject("census-shape"),
+                                 "expected ROWSxCOLS or ROWSxCOLS+LENGTH (e.g. 5x5, 1x25, "
+                                 "3x3+19), got '" + v + "'");
+              }
+              return static_cast<int>(parse_whole_number("--census-shape", part, 1, 101));
+            };
+            if (times == std::string::npos) number(0, 0);  // empty: the error above
+            p.census_rows = number(0, times);
+            p.census_cols = number(times + 1, plus);
+            p.census_row_length = plus == std::string::npos ? p.census_cols : number(plus + 1, std::string::npos);
+          },
+          [](const StereoParams& p) {
+            std::string text = std::to_string(p.census_rows) + "x" + std::to_string(p.census_cols);
+            if (p.census_row_length != p.census_cols) text += "+" + std::to_string(p.census_row_length);
+            return text;
+          }};
+}
+
 // The method, the disparity range and the matching cost.
 std::vector<ParamOption> matching_options() {
   return {
@@ -77,6 +107,8 @@ std::vector<ParamOption> matching_options() {
                      "disparity range [0, ndisp - 1]"),
       integer_option("window", &StereoParams::window,
                      "support window side (odd)"),
+      integer_option("window-rows", &StereoParams::window_rows,
+                     "support window rows (odd, 0 = window)"),
       integer_option("window-step", &StereoParams::window_step,
                      "sample every n-th window row/column"),
       integer_option("window-step-fine", &StereoParams::window_step_fine,
@@ -94,9 +126,10 @@ std::vector<ParamOption> matching_options() {
       float_option("gamma-distance", &StereoParams::gamma_distance,
                    "support weight distance bandwidth (px, inf = off)", Infinity::kMeaningful),
       float_option("census-weight", &StereoParams::census_weight,
-                   "weight of the 5x5 census distance (0 = off)"),
+                   "weight of the census distance (0 = off)"),
       float_option("census-cap", &StereoParams::census_cap,
                    "census distance counted up to this many bits (24 = no cap)"),
+      census_shape_option(),
       // clang-format on
   };
 }

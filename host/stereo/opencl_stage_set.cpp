@@ -16,19 +16,19 @@ DeviceView make_view(Context& context, int width, int height, const char* name) 
 }  // namespace
 
 std::vector<DeviceView> OpenClStageSet::build_pyramid(const cv::Mat& rgb8, int levels,
-                                                      int view) {
+                                                      int view, PmsCensusShape census) {
   const char* name = kViewNames[view];
   std::vector<DeviceView> pyramid;
   pyramid.reserve(levels);
   pyramid.push_back(make_view(context(), rgb8.cols, rgb8.rows, name));
   pyramid.back().color.write(view_color(rgb8));
-  compute_gradient(pyramid.back());
+  compute_gradient(pyramid.back(), census);
   for (int level = 1; level < levels; ++level) {
     const DeviceView& fine = pyramid.back();
     DeviceView coarse =
         make_view(context(), (fine.width + 1) / 2, (fine.height + 1) / 2, name);
     downsample_color(fine, coarse);
-    compute_gradient(coarse);
+    compute_gradient(coarse, census);
     pyramid.push_back(std::move(coarse));
   }
   return pyramid;

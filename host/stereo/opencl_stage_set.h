@@ -34,7 +34,8 @@ class OpenClStageSet : public OpenClStages {
 
   // Level 0 from the host colour, then downsampled on the device, gradients and census
   // computed there.
-  std::vector<View> build_pyramid(const cv::Mat& rgb8, int levels, int view);
+  std::vector<View> build_pyramid(const cv::Mat& rgb8, int levels, int view,
+                                  PmsCensusShape census);
   template <class T>
   Array<T> array(size_t count, const char* what) {
     return Buffer<T>(context(), count, what);

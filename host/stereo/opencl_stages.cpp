@@ -127,9 +127,10 @@ void OpenClStages::downsample_color(const DeviceView& fine, DeviceView& coarse) 
   launch(downsample_color_, coarse.width, coarse.height);
 }
 
-void OpenClStages::compute_gradient(DeviceView& view) {
+void OpenClStages::compute_gradient(DeviceView& view, PmsCensusShape census) {
   require_view(view, "compute_gradient");
-  compute_gradient_.set_args(view.color, view.width, view.height, view.gradient);
+  compute_gradient_.set_args(view.color, view.width, view.height, view.gradient,
+                             census.half_rows, census.half_cols, census.half_row_length);
   launch(compute_gradient_, view.width, view.height);
 }
 

@@ -42,7 +42,7 @@ class OpenClStages {
 
   // fallback/stereo/image_pyramid.cpp: downsample's colour part, then compute_gradient.
   void downsample_color(const DeviceView& fine, DeviceView& coarse);
-  void compute_gradient(DeviceView& view);
+  void compute_gradient(DeviceView& view, PmsCensusShape census = kSquareCensus);
   // The view's match records (match_record_floats of its pixels), which the cost
   // kernels read when it is the other view; no reference counterpart.
   void pack_match_samples(const DeviceView& view, Buffer<float>& match);

@@ -16,7 +16,7 @@
 //   template <class T> using Array;  a pixel buffer (std::vector<T> or Buffer<T>)
 //   View, Field, Level;              one view of a pyramid level, planes and costs of
 //                                    a view, what a level's stages read
-//   build_pyramid(rgb8, levels, view)           the view's pyramid, level 0 finest
+//   build_pyramid(rgb8, levels, view, census)   the view's pyramid, level 0 finest
 //   array<T>(count, what), upload(values, what) buffers ("what" names them in errors)
 //   field(width, height, view)                  planes and costs of a view
 //   planes_field(width, height, planes)         planes without costs
@@ -60,8 +60,9 @@ class PatchMatchSchedule {
     enter("pyramid");
     const int levels = pipeline_level_count(params_, left_rgb8.cols, left_rgb8.rows);
     auto start = Clock::now();
-    pyramid_[PMS_VIEW_LEFT] = stages_.build_pyramid(left_rgb8, levels, PMS_VIEW_LEFT);
-    pyramid_[PMS_VIEW_RIGHT] = stages_.build_pyramid(right_rgb8, levels, PMS_VIEW_RIGHT);
+    const PmsCensusShape census = census_shape(params_);
+    pyramid_[PMS_VIEW_LEFT] = stages_.build_pyramid(left_rgb8, levels, PMS_VIEW_LEFT, census);
+    pyramid_[PMS_VIEW_RIGHT] = stages_.build_pyramid(right_rgb8, levels, PMS_VIEW_RIGHT, census);
     weights_ = stages_.upload(make_support_weight_table(params_.gamma, params_.gamma_distance),
                               "weights");
     stages_.finish();

@@ -51,12 +51,18 @@ std::string LevelPlan::refill_label(int iteration) const {
          std::to_string(refill_iterations);
 }
 
+PmsCensusShape census_shape(const StereoParams& params) {
+  return {params.census_rows / 2, params.census_cols / 2, params.census_row_length / 2};
+}
+
 LevelPlan plan_level(const StereoParams& params, int level, int levels, int width, int height) {
   LevelPlan plan;
   plan.level = level;
   plan.coarsest = level == levels - 1;
   plan.ndisp = level_ndisp(params.ndisp, level);
-  plan.cost = {params.window / 2, params.window_step, params.alpha, 1.0f - params.alpha,
+  const int window_rows = params.window_rows > 0 ? params.window_rows : params.window;
+  plan.cost = {params.window / 2, window_rows / 2, params.window_step, params.alpha,
+               1.0f - params.alpha,
                params.tau_color, params.tau_gradient, params.census_weight, params.census_cap};
   if (params.method == StereoMethod::PMS) {
     plan.iterations = params.iterations;

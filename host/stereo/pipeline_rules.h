@@ -67,6 +67,9 @@ struct LevelPlan {
   std::string refill_label(int iteration) const;
 };
 
+// The census neighbourhood of StereoParams::census_rows / cols / row_length.
+PmsCensusShape census_shape(const StereoParams& params);
+
 // `width` x `height`: the size of the level (for its name).
 LevelPlan plan_level(const StereoParams& params, int level, int levels, int width, int height);
 

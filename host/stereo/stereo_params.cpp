@@ -21,6 +21,9 @@ void StereoParams::check() const {
   require(ndisp > 0, "ndisp", "must be positive, got " + std::to_string(ndisp));
   require(window >= 1 && window % 2 == 1 && window <= 101, "window",
           "must be odd and in 1..101, got " + std::to_string(window));
+  require(window_rows == 0 || (window_rows >= 1 && window_rows % 2 == 1 && window_rows <= 101),
+          "window-rows", "must be 0 (= window) or odd and in 1..101, got " +
+                             std::to_string(window_rows));
   require(window_step >= 1 && window_step <= window, "window-step",
           "must be in 1..window, got " + std::to_string(window_step));
   require(window_step_fine >= 1 && window_step_fine <= window, "window-step-fine",
@@ -34,6 +37,17 @@ void StereoParams::check() const {
   require(std::isfinite(census_weight) && census_weight >= 0, "census-weight", "must be >= 0");
   require(std::isfinite(census_cap) && census_cap >= 0 && census_cap <= 24, "census-cap",
           "must be in [0, 24] (24: no cap)");
+  const bool census_odd = census_rows >= 1 && census_rows % 2 == 1 && census_cols >= 1 &&
+                          census_cols % 2 == 1 && census_row_length >= census_cols &&
+                          census_row_length % 2 == 1;
+  const long census_bits = census_odd ? static_cast<long>(census_rows) * census_cols - 1 +
+                                            (census_row_length - census_cols)
+                                      : 0;
+  require(census_odd && census_bits >= 1 && census_bits <= PMS_CENSUS_MAX_BITS,
+          "census-shape",
+          "needs odd sides, a centre row at least as long as the others and 1..24 bits, got " +
+              std::to_string(census_rows) + "x" + std::to_string(census_cols) + "+" +
+              std::to_string(census_row_length));
   // At most 50 + 10 iterations per level keep the random generator's iteration keys
   // (iteration_key: 64 per level) distinct.
   require(iterations >= 1 && iterations <= 50, "iterations", "must be in 1..50");

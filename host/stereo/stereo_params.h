@@ -19,6 +19,9 @@ struct StereoParams {
   int ndisp = 64;
   // Side of the square support window in pixels (odd).
   int window = 35;
+  // Rows of the support window (odd; 0 = window, square): a window wider than tall
+  // sums more of a surface that slopes along the rows. Figures: docs/stereo.md, item 3.
+  int window_rows = 0;
   // Only every step-th row and column of the window is summed; 2 keeps accuracy and
   // divides the cost of a matching evaluation by four.
   int window_step = 2;
@@ -53,6 +56,14 @@ struct StereoParams {
   // tau_color and tau_gradient. 10 bits: 10.91 % against 11.09 % with no cap (mean of
   // seeds 1-5); 8 and 16 bits did no better.
   float census_cap = 10.0f;
+  // The census's neighbourhood (pms_census_pixel): census_rows x census_cols (odd), its
+  // centre row census_row_length long (odd, >= census_cols), at most 24 bits in all.
+  // 5x5 by default. A surface that slopes along the rows (a bin's top and bottom walls,
+  // 2-3 px of disparity a row) shears the rows above and below the centre between the
+  // views; the centre row alone (1x25) does not. Figures: docs/stereo.md, item 3.
+  int census_rows = 5;
+  int census_cols = 5;
+  int census_row_length = 5;
   // Adaptive support weight exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_distance)
   // (Yoon and Kweon 2006; Bleyer et al. keep the colour factor only: gamma_distance
   // inf). Window pixels far from the centre more often lie on another surface of a

@@ -13,14 +13,20 @@ __kernel void downsample_color(const __global float* fine, int fine_width, int f
   pms_downsample_pixel(fine, fine_width, fine_height, x, y, coarse + 4 * (y * coarse_width + x));
 }
 
-/* Grey-value gradient (gx, gy) of pixel (x, y), and its census in the colour's fourth
- * component (the neighbours' colours are read from components 0..2 only). */
+/* Grey-value gradient (gx, gy) of pixel (x, y), and its census (shape: PmsCensusShape's
+ * three fields) in the colour's fourth component (the neighbours' colours are read from
+ * components 0..2 only). */
 __kernel void compute_gradient(__global float* color, int width, int height,
-                               __global float* gradient) {
+                               __global float* gradient, int census_half_rows,
+                               int census_half_cols, int census_half_row_length) {
   int x, y;
   if (!pms_dense_pixel(width, height, &x, &y)) return;
+  PmsCensusShape shape;
+  shape.half_rows = census_half_rows;
+  shape.half_cols = census_half_cols;
+  shape.half_row_length = census_half_row_length;
   pms_gradient_pixel(color, width, height, x, y, gradient + 2 * (y * width + x));
-  color[4 * (y * width + x) + 3] = pms_census_pixel(color, width, height, x, y);
+  color[4 * (y * width + x) + 3] = pms_census_pixel(color, width, height, x, y, shape);
 }
 
 /* Match record (pms_match_record) of pixel (x, y). The buffer holds PMS_MATCH_RECORD

@@ -1,7 +1,7 @@
 /*
  * Per-pixel preparation of the images the matching cost reads, shared by the reference
  * path (fallback/stereo/image_pyramid.cpp) and the kernels (build_view.cl): the
- * pyramid's 2x2 average, the grey value, the 5x5 census and the gradient, and the
+ * pyramid's 2x2 average, the grey value, the census and the gradient, and the
  * other view's match records of the lane cost. Same rules as pms_math.h.
  */
 #ifndef FLEXSIGHT_PMS_IMAGE_H
@@ -32,17 +32,38 @@ FS_INLINE float pms_grey3(const FS_GLOBAL float* color, int index) {
   return color[4 * index] + color[4 * index + 1] + color[4 * index + 2];
 }
 
-/* 5x5 census of the grey value r + g + b: bit k is set when the k-th neighbour (row
- * by row, centre left out, coordinates clamped at the border) is darker than the centre.
- * 24 bits, exact as a float; it goes in the colour's fourth component. */
+/* The census's neighbourhood: the (2 half_rows + 1) x (2 half_cols + 1) rectangle
+ * around the pixel, whose centre row reaches half_row_length pixels to each side
+ * (>= half_cols). 5x5 (2, 2, 2) is the default; a surface that slopes along the rows
+ * shears the rows above and below between the views, which a census of the centre row
+ * only (0, 12, 12: 1x25) does not see. At most PMS_CENSUS_MAX_BITS bits. */
+typedef struct {
+  int half_rows;
+  int half_cols;
+  int half_row_length;
+} PmsCensusShape;
+
+/* A bit string stays an exact integer in a float up to 2^24. */
+#define PMS_CENSUS_MAX_BITS 24
+
+FS_INLINE int pms_census_bit_count(PmsCensusShape shape) {
+  return (2 * shape.half_rows + 1) * (2 * shape.half_cols + 1) - 1 +
+         2 * (shape.half_row_length - shape.half_cols);
+}
+
+/* Census of the grey value r + g + b over `shape`: bit k is set when the k-th neighbour
+ * (row by row, left to right, centre left out, coordinates clamped at the border) is
+ * darker than the centre. An exact float integer; it goes in the colour's fourth
+ * component. */
 FS_INLINE float pms_census_pixel(const FS_GLOBAL float* color, int width, int height, int x,
-                                  int y) {
+                                  int y, PmsCensusShape shape) {
   float centre = pms_grey3(color, y * width + x);
   fs_u32 bits = 0U;
   fs_u32 bit = 1U;
-  for (int dy = -2; dy <= 2; ++dy) {
+  for (int dy = -shape.half_rows; dy <= shape.half_rows; ++dy) {
     int qy = y + dy < 0 ? 0 : (y + dy > height - 1 ? height - 1 : y + dy);
-    for (int dx = -2; dx <= 2; ++dx) {
+    int reach = dy == 0 ? shape.half_row_length : shape.half_cols;
+    for (int dx = -reach; dx <= reach; ++dx) {
       if (dx == 0 && dy == 0) continue;
       int qx = x + dx < 0 ? 0 : (x + dx > width - 1 ? width - 1 : x + dx);
       if (pms_grey3(color, qy * width + qx) < centre) bits |= bit;

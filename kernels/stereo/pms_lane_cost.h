@@ -166,6 +166,7 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
   const int width = in->width;
   const int height = in->height;
   const int radius = in->params.radius;
+  const int radius_rows = in->params.radius_rows;
   const int step = in->params.step;
   const float direction = in->direction;
   const PmsCostParams params = in->params;
@@ -203,13 +204,13 @@ __attribute__((always_inline)) inline void pms_cost_lanes_group(
   const pms_floatv cg = PMS_VLOAD(0, centre_g);
   const pms_floatv cb = PMS_VLOAD(0, centre_b);
 
-  const int y_begin = pms_first_offset(radius, step, -py);
-  const int y_end = radius < height - 1 - py ? radius : height - 1 - py;
+  const int y_begin = pms_first_offset(radius_rows, step, -py);
+  const int y_end = radius_rows < height - 1 - py ? radius_rows : height - 1 - py;
   /* The whole window's column grid; each lane keeps the columns inside the image,
    * which are exactly pms_first_offset(.., -x) .. min(radius, width - 1 - x). */
   const int x_begin = pms_first_offset(radius, step, -radius);
   const float max_x = (float)(width - 1);
-  const int row_count = pms_window_row_count(radius, step);
+  const int row_count = pms_window_row_count(radius_rows, step);
   for (int row_index = 0; row_index < row_count; ++row_index) {
     const int dy = pms_window_row(row_index, step);
     if (dy < y_begin || dy > y_end) continue;

@@ -14,7 +14,7 @@
  *    trial), so no state is shared between pixels and thread order cannot matter.
  *
  * Buffers are flat float arrays: colour 4 floats per pixel (r, g, b: integer values
- * 0..255; then the pixel's 24-bit census as an exact float integer), gradient 2 floats per pixel (gx, gy), planes 4 floats per pixel
+ * 0..255; then the pixel's census (at most 24 bits) as an exact float integer), gradient 2 floats per pixel (gx, gy), planes 4 floats per pixel
  * (a, b, c, unused) meaning disparity d(x, y) = a*x + b*y + c in that view's pixels.
  */
 #ifndef FLEXSIGHT_PMS_MATH_H
@@ -49,7 +49,8 @@
 #define PMS_INIT_MAX_SLOPE 0.5f
 
 typedef struct {
-  int radius;            /* half window: the window spans [-radius, radius] */
+  int radius;            /* half window: its columns span [-radius, radius] */
+  int radius_rows;       /* and its rows [-radius_rows, radius_rows] */
   int step;              /* sample every step-th row and column of the window */
   float alpha;           /* weight of the gradient term */
   float one_minus_alpha; /* computed once on the host so both paths use one value */
@@ -256,8 +257,8 @@ FS_INLINE int pms_window_row(int row_index, int step) {
  * cost and its weight sum run over the same pixels. */
 FS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, int px, int py,
                                   int* y_begin, int* y_end, int* x_begin, int* x_end) {
-  *y_begin = pms_first_offset(params.radius, params.step, -py);
-  *y_end = params.radius < height - 1 - py ? params.radius : height - 1 - py;
+  *y_begin = pms_first_offset(params.radius_rows, params.step, -py);
+  *y_end = params.radius_rows < height - 1 - py ? params.radius_rows : height - 1 - py;
   *x_begin = pms_first_offset(params.radius, params.step, -px);
   *x_end = params.radius < width - 1 - px ? params.radius : width - 1 - px;
 }
@@ -303,7 +304,7 @@ FS_INLINE void pms_window_bounds(PmsCostParams params, int width, int height, in
  * with w(p, q) = exp(-|I_p - I_q|_1 / gamma) exp(-|q - p| / gamma_d) (Yoon and Kweon's
  * adaptive support weight; both factors from the `weights` table), q' = q -+ d(q)
  * (direction -1 for the left view, +1 for the right), I' linearly interpolated, H the
- * Hamming distance of 5x5 census bit strings (pms_census_pixel) and q'' the pixel nearest
+ * Hamming distance of census bit strings (pms_census_pixel, 5x5 by default) and q'' the pixel nearest
  * to q' (a bit string does not interpolate).
  * Window pixels outside the image are left out; the set depends only on p, so every
  * candidate plane of p is summed over the same pixels. Matching positions outside the
@@ -325,7 +326,7 @@ FS_INLINE float pms_plane_cost(const FS_GLOBAL float* ref_color,
   pms_window_bounds(params, width, height, px, py, &y_begin, &y_end, &x_begin, &x_end);
   float max_x = (float)(width - 1);
   float sum = 0.0f;
-  int row_count = pms_window_row_count(params.radius, params.step);
+  int row_count = pms_window_row_count(params.radius_rows, params.step);
   for (int row_index = 0; row_index < row_count; ++row_index) {
     int dy = pms_window_row(row_index, params.step);
     if (dy < y_begin || dy > y_end) continue;

@@ -66,6 +66,10 @@ TEST_F(Cli, RejectsImpossibleParameters) {
   expect_rejected(pair + " --window 7 --window-step-fine 9", "--window-step-fine");
   expect_rejected(pair + " --alpha 1.5", "--alpha");
   expect_rejected(pair + " --confident-spatial-candidates 17", "--confident-spatial-candidates");
+  expect_rejected(pair + " --census-shape 4x5", "--census-shape");   // even side
+  expect_rejected(pair + " --census-shape 1x27", "--census-shape");  // 26 bits
+  expect_rejected(pair + " --census-shape 5by5", "--census-shape");  // not ROWSxCOLS
+  expect_rejected(pair + " --window-rows 6", "--window-rows");
   expect_rejected(pair + " --confident-spatial-candidates -1", "--confident-spatial-candidates");
   expect_rejected(pair + " --refresh-confidence 2", "--refresh-confidence");
   expect_rejected(pair + " --speckle-slopes yes", "--speckle-slopes");

@@ -188,7 +188,7 @@ struct ReferenceLevel {
     images[PMS_VIEW_RIGHT] = make_view_image(pair.right);
     for (int view = 0; view < 2; ++view) in.views[view] = &images[view];
     in.weights = weights.data();
-    in.cost = {c.window / 2, c.step,          0.9f, 1.0f - 0.9f, 10.0f, 2.0f,
+    in.cost = {c.window / 2, c.window / 2, c.step, 0.9f, 1.0f - 0.9f, 10.0f, 2.0f,
                c.census_weight, c.census_cap};
     in.ndisp = c.ndisp;
     in.seed = c.seed;

@@ -26,7 +26,7 @@ ViewImage grey_row(std::initializer_list<float> values) {
 
 PmsCostParams params(int radius, int step, float tau_color, float tau_gradient,
                      float census_weight = 0.0f, float census_cap = 24.0f) {
-  return {radius, step,         0.9f,       1.0f - 0.9f, tau_color, tau_gradient,
+  return {radius, radius, step, 0.9f, 1.0f - 0.9f, tau_color, tau_gradient,
           census_weight, census_cap};
 }
 
@@ -141,6 +141,46 @@ TEST(MatchingCost, ZeroForTheTrueShift) {
   EXPECT_GT(cost(left, right, weights, params(3, 1, 10, 2), 15, 6, 0, 0, 4.0f, -1.0f), 1.0f);
   // And the right view matches at x + d.
   EXPECT_EQ(cost(right, left, weights, params(3, 1, 10, 2), 12, 6, 0, 0, 3.0f, 1.0f), 0.0f);
+}
+
+// Other neighbourhoods, on a 25x3 image whose grey rises left to right on the centre
+// row and whose rows above and below are black. The centre row's census (1x25) at its
+// middle pixel sees its 12 left neighbours darker: bits 0..11, whatever the other rows
+// hold. A 3x3 square with a 19-px centre row counts the 3 neighbours above first (all
+// darker: bits 0..2), then the row's 9 left ones (bits 3..11), its 9 right ones, and the
+// 3 below (bits 21..23).
+// A window of one row (radius_rows 0) sums the centre row only: rows above and below
+// that match badly under the plane cost nothing, and they do in the square window.
+TEST(Cost, AWindowOfOneRowSumsTheCentreRowOnly) {
+  cv::Mat left(5, 12, CV_8UC3), right(5, 12, CV_8UC3);
+  for (int y = 0; y < 5; ++y) {
+    for (int x = 0; x < 12; ++x) {
+      left.at<cv::Vec3b>(y, x) = cv::Vec3b::all(static_cast<uchar>(20 * x));
+      right.at<cv::Vec3b>(y, x) = cv::Vec3b::all(static_cast<uchar>(y == 2 ? 20 * x : 7 * std::abs(y - 2)));
+    }
+  }
+  const ViewImage l = make_view_image(left), r = make_view_image(right);
+  const std::vector<float> weights = make_support_weight_table(10.0f, 20.0f);
+  PmsCostParams p = params(2, 1, 10.0f, 2.0f);
+  EXPECT_GT(cost(l, r, weights, p, 6, 2, 0, 0, 0.0f, -1.0f), 1.0f);
+  p.radius_rows = 0;
+  EXPECT_EQ(cost(l, r, weights, p, 6, 2, 0, 0, 0.0f, -1.0f), 0.0f);
+}
+
+TEST(Census, OtherShapesReadTheirNeighboursInRowOrder) {
+  cv::Mat rgb8(3, 25, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int x = 0; x < 25; ++x) rgb8.at<cv::Vec3b>(1, x) = cv::Vec3b::all(static_cast<uchar>(10 * x));
+  const auto census_at = [&](PmsCensusShape shape, int x) {
+    const ViewImage v = make_view_image(rgb8, shape);
+    return static_cast<std::uint32_t>(v.color[4 * (25 + x) + 3]);
+  };
+  EXPECT_EQ(census_at({0, 12, 12}, 12), 0xFFFu);
+  EXPECT_EQ(census_at({1, 1, 9}, 12), 0xE00FFFu);
+  // At the row's left end the clamped neighbours equal the centre: not darker.
+  EXPECT_EQ(census_at({0, 12, 12}, 0), 0u);
+  EXPECT_EQ(pms_census_bit_count({0, 12, 12}), 24);
+  EXPECT_EQ(pms_census_bit_count({1, 1, 9}), 24);
+  EXPECT_EQ(pms_census_bit_count(kSquareCensus), 24);
 }
 
 TEST(Census, StoredInTheFourthColourComponentAsItsDefinitionSays) {

@@ -23,8 +23,12 @@ StereoParams unusual_params() {
   p.method = StereoMethod::PMS;
   p.ndisp = 77;
   p.window = 31;
+  p.window_rows = 13;
   p.alpha = 0.7f;
   p.census_cap = 12.0f;
+  p.census_rows = 3;
+  p.census_cols = 3;
+  p.census_row_length = 19;
   p.gamma = 12.0f;
   p.iterations = 4;
   p.iterations_coarsest = 5;
@@ -39,8 +43,12 @@ void expect_same_non_knob_fields(const StereoParams& a, const StereoParams& b) {
   EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.ndisp, b.ndisp);
   EXPECT_EQ(a.window, b.window);
+  EXPECT_EQ(a.window_rows, b.window_rows);
   EXPECT_EQ(a.alpha, b.alpha);
   EXPECT_EQ(a.census_cap, b.census_cap);
+  EXPECT_EQ(a.census_rows, b.census_rows);
+  EXPECT_EQ(a.census_cols, b.census_cols);
+  EXPECT_EQ(a.census_row_length, b.census_row_length);
   EXPECT_EQ(a.gamma, b.gamma);
   EXPECT_EQ(a.iterations, b.iterations);
   EXPECT_EQ(a.iterations_coarsest, b.iterations_coarsest);
@@ -239,4 +247,38 @@ TEST(StereoParamValues, ReadBackThroughTheCommandLineAsTheSameParameters) {
   EXPECT_TRUE(std::isinf(read_back.gamma_distance));
   EXPECT_EQ(read_back.window_step_finest, original.window_step_finest);
   EXPECT_EQ(read_back.census_cap, original.census_cap);
+  EXPECT_EQ(read_back.census_row_length, 19);
+}
+
+// --census-shape: ROWSxCOLS[+LENGTH] and the two names; shapes the census cannot hold
+// (even sides, a centre row shorter than the others, more than 24 bits) are refused by
+// name, with the shape as given.
+TEST(StereoParamValues, CensusShapeReadsItsFormsAndRefusesImpossibleShapes) {
+  const auto shape_of = [](const std::string& text) {
+    std::vector<std::string> args = {"--census-shape", text};
+    StereoParams p;
+    consume_stereo_params(args, p);
+    return std::to_string(p.census_rows) + " " + std::to_string(p.census_cols) + " " +
+           std::to_string(p.census_row_length);
+  };
+  EXPECT_EQ(shape_of("row"), "1 25 25");
+  EXPECT_EQ(shape_of("square"), "5 5 5");
+  EXPECT_EQ(shape_of("3x7"), "3 7 7");
+  EXPECT_EQ(shape_of("3x3+19"), "3 3 19");
+  for (const std::string bad : {"5", "x5", "5x", "5x5+", "ax5", "-1x5", "5x5x5"}) {
+    std::vector<std::string> args = {"--census-shape", bad};
+    StereoParams p;
+    EXPECT_THROW(consume_stereo_params(args, p), InputError) << bad;
+  }
+  for (const std::string bad : {"4x5", "5x7", "1x27", "3x3+1", "1x1", "3x5+6"}) {
+    std::vector<std::string> args = {"--census-shape", bad};
+    StereoParams p;
+    consume_stereo_params(args, p);
+    try {
+      p.check();
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("census-shape"), std::string::npos) << e.what();
+    }
+  }
 }

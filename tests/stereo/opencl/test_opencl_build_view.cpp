@@ -46,6 +46,26 @@ TEST_P(BuildView, DownsampleMatchesTheReference) {
   EXPECT_TRUE(same_buffer(expected.gradient, coarse.gradient));
 }
 
+// Census neighbourhoods other than the default 5x5 (PmsCensusShape): the centre row
+// only, a 3x3 square with a 19-px centre row, 3x7, and a lone pair of row neighbours.
+TEST_P(BuildView, OtherCensusShapesMatchTheReference) {
+  const ImageCase c = GetParam();
+  const cv::Mat rgb8 = testing_support::random_rgb8(c.width, c.height, c.seed);
+  for (const PmsCensusShape shape : {PmsCensusShape{0, 12, 12}, PmsCensusShape{1, 1, 9},
+                                     PmsCensusShape{1, 3, 3}, PmsCensusShape{0, 1, 1}}) {
+    const ViewImage image = make_view_image(rgb8, shape);
+    if (c.width >= 7 && c.height >= 5) {
+      EXPECT_NE(image.color, make_view_image(rgb8).color) << "the shape changes the census";
+    }
+    DeviceView view{image.width, image.height, guarded(image.color, "colour"),
+                    guarded_output<float>(image.gradient.size(), "gradient")};
+    stages().compute_gradient(view, shape);
+    EXPECT_TRUE(same_buffer(image.gradient, view.gradient));
+    EXPECT_TRUE(same_buffer(image.color, view.color)) << shape.half_rows << "," << shape.half_cols
+                                                      << "," << shape.half_row_length;
+  }
+}
+
 // The records are a device-only layout: written out here from their definition.
 std::vector<float> expected_match_records(const ViewImage& image) {
   std::vector<float> records;

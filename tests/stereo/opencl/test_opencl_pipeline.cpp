@@ -103,6 +103,20 @@ std::vector<PipelineCase> pipeline_cases() {
         p.speckle_slopes = true;
         p.raw_speckle_size = 60;
       }));
+  // Other census neighbourhoods (StereoParams::census_rows / cols / row_length): the
+  // centre row only, and a 3x3 square with a 19-px centre row.
+  add("ppms_w11_row_census", ppms([](StereoParams& p) {
+        p.census_rows = 1;
+        p.census_cols = 25;
+        p.census_row_length = 25;
+      }));
+  add("ppms_w11_census_3x3_row_19", ppms([](StereoParams& p) {
+        p.census_rows = 3;
+        p.census_cols = 3;
+        p.census_row_length = 19;
+      }));
+  // A support window wider than tall (StereoParams::window_rows).
+  add("ppms_w11_window_5_rows", ppms([](StereoParams& p) { p.window_rows = 5; }));
   return cases;
 }
 
