@@ -177,8 +177,10 @@ int pick_ndisp(const PickOptions& options, const std::string& calib) {
   if (options.ndisp_given) return options.settings.stereo.ndisp;
   try {
     return read_middlebury_calib(calib).ndisp;
-  } catch (const InputError&) {
-    throw InputError("option --ndisp", "missing: " + calib + " gives no disparity range");
+  } catch (const InputError& e) {
+    // The reason travels along: a Middlebury file may be unreadable for another cause
+    // (e.g. its projector pattern is missing), which the user must see.
+    throw InputError("option --ndisp", "missing: " + calib + " gives no disparity range (" + e.what() + ")");
   }
 }
 

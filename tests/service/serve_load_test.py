@@ -114,7 +114,7 @@ def main():
         left, right, calib = (os.path.join(bin_dir, f) for f in ("im0.png", "im1.png", "calib.txt"))
         small = os.path.join(work, "small.png")
         Image.open(right).resize((160, 120)).save(small)
-        wide_calib = os.path.join(work, "wide_calib.txt")
+        wide_calib = os.path.join(bin_dir, "wide_calib.txt")  # beside the projector pattern calib.txt names
         with open(calib) as f, open(wide_calib, "w") as out:
             out.write(f.read().replace("width=320", "width=400"))
         cli_json = os.path.join(work, "cli.json")
