@@ -1,6 +1,7 @@
-// flexsight projector decode|calibrate: the projector as a third view (docs/projector.md).
-// decode fills the left pixels a stereo result leaves inconsistent from the projector's
-// pattern; calibrate estimates the pattern (and checks the projector's pose) from
+// flexsight projector decode|check|calibrate: the projector as a third view
+// (docs/projector.md). decode fills the left pixels a stereo result leaves inconsistent
+// from the projector's pattern; check flags stereo matches the pattern disagrees with;
+// calibrate estimates the pattern (and checks the projector's pose) from
 // confident stereo results. Both read what `flexsight stereo -o --raw --raw-right` wrote.
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "host/io/output_path.h"
 #include "host/io/pfm.h"
 #include "host/projector/projector_calibrate.h"
+#include "host/projector/projector_check.h"
 #include "host/projector/projector_decode.h"
 
 namespace flexsight {
@@ -26,6 +28,7 @@ namespace fs = std::filesystem;
 
 void print_help() {
   std::cout << "usage: flexsight projector decode SCENE --stereo DIR -o DISP.pfm [options]\n"
+               "       flexsight projector check SCENE --stereo DIR --mask MASK.png [-o DISP.pfm] [options]\n"
                "       flexsight projector calibrate SCENE [SCENE ...] --stereo DIR -o OUT_DIR [options]\n"
                "SCENE is a MiddEval3 scene folder (im0.png, calib.txt); DIR holds its stereo result\n"
                "as <scene>_disp.pfm, <scene>_raw.pfm, <scene>_raw_right.pfm (flexsight stereo's -o,\n"
@@ -43,6 +46,19 @@ void print_help() {
                "  --visibility          skip candidates the stereo result rules out: in front of\n"
                "                        what the right camera sees there, or in a projector shadow\n"
                "  --state STATE.png     0 not asked, 128 not distinct, 255 decoded\n"
+               "check: at each pixel of <scene>_disp.pfm the projector's light is compared with the\n"
+               "pattern at the stereo disparity and within +-range px along the projector row;\n"
+               "writes MASK.png (255 where the projector disagrees) and, with -o, the disparity\n"
+               "with those pixels inf (or, with --replace, the projector's best where distinct).\n"
+               "  --projector CALIB     as for decode\n"
+               "  --window N            odd window, px (default 13)\n"
+               "  --range R             px either side of the stereo disparity searched (default 8)\n"
+               "  --margin M            flag when the best more than 2 px away scores M above the\n"
+               "                        stereo disparity (default 0.3)\n"
+               "  --floor F             also flag when the stereo disparity scores below F (default -1: off)\n"
+               "  --min-texture T       as for decode (default 1)\n"
+               "  --replace             flagged pixels take the projector's best when it scores at\n"
+               "                        least --replace-score (default 0.5); the others inf\n"
                "calibrate: estimates the pattern from the confident stereo matches of the scenes,\n"
                "for a projector on the baseline; writes OUT_DIR/calib.txt (the first scene's with\n"
                "the proj* lines) and OUT_DIR/projector_pattern.png, and prints the pose check.\n"
@@ -61,7 +77,8 @@ void same_size(const std::string& path, const cv::Mat& image, const cv::Mat& lef
   if (image.size() != left.size()) throw InputError(path, "is not the size of the scene's im0.png");
 }
 
-SceneInputs read_scene(const std::string& folder, const std::string& stereo_dir) {
+// with_raw: also the raw left and right disparities (decode and calibrate need them).
+SceneInputs read_scene(const std::string& folder, const std::string& stereo_dir, bool with_raw = true) {
   SceneInputs scene;
   scene.name = fs::path(folder).filename().string();
   if (scene.name.empty()) scene.name = fs::path(folder).parent_path().filename().string();
@@ -75,9 +92,24 @@ SceneInputs read_scene(const std::string& folder, const std::string& stereo_dir)
     return image;
   };
   scene.disparity = read("_disp.pfm");
-  scene.raw_left = read("_raw.pfm");
-  scene.raw_right = read("_raw_right.pfm");
+  if (with_raw) {
+    scene.raw_left = read("_raw.pfm");
+    scene.raw_right = read("_raw_right.pfm");
+  }
   return scene;
+}
+
+// The calibration carrying the projector: --projector's file, else the scene's; one that
+// has none or whose projector the decoder cannot use is an InputError naming the file.
+MiddleburyCalib read_projector(const std::string& folder, const std::string& projector_file,
+                               const MiddleburyCalib& scene_calib) {
+  const std::string source = projector_file.empty() ? middeval3_files(folder).calib : projector_file;
+  MiddleburyCalib with_projector = projector_file.empty() ? scene_calib : read_middlebury_calib(projector_file);
+  if (!with_projector.projector) {
+    throw InputError(source, "has no projector entry (proj* lines, docs/projector.md); give --projector");
+  }
+  require_rectified_projector(*with_projector.projector, source);
+  return with_projector;
 }
 
 int run_decode(std::vector<std::string>& args) {
@@ -104,12 +136,7 @@ int run_decode(std::vector<std::string>& args) {
   if (!state_png.empty()) check_output_file(state_png);
 
   const SceneInputs scene = read_scene(args[0], stereo_dir);
-  const std::string source = projector_file.empty() ? middeval3_files(args[0]).calib : projector_file;
-  const MiddleburyCalib with_projector = projector_file.empty() ? scene.calib : read_middlebury_calib(projector_file);
-  if (!with_projector.projector) {
-    throw InputError(source, "has no projector entry (proj* lines, docs/projector.md); give --projector");
-  }
-  require_rectified_projector(*with_projector.projector, source);
+  const MiddleburyCalib with_projector = read_projector(args[0], projector_file, scene.calib);
   const cv::Mat pattern = load_pattern(*with_projector.projector);
 
   const cv::Mat asked = left_right_failures(scene.raw_left, scene.raw_right, params.lr_tolerance);
@@ -125,6 +152,48 @@ int run_decode(std::vector<std::string>& args) {
   }
   std::printf("%s: %d pixels failed the left/right check, %d decoded (%.1f %%)\n", scene.name.c_str(),
               result.asked, result.decoded, result.asked ? 100.0 * result.decoded / result.asked : 0.0);
+  return 0;
+}
+
+int run_check(std::vector<std::string>& args) {
+  const std::string stereo_dir = take_option(args, "--stereo");
+  const std::string mask_png = take_option(args, "--mask");
+  const std::string out = take_option(args, "-o");
+  const std::string projector_file = take_option(args, "--projector");
+  ProjectorCheckParams params;
+  params.window = int(take_number_option(args, "--window", params.window));
+  params.range = take_number_option(args, "--range", params.range);
+  params.margin = take_number_option(args, "--margin", params.margin);
+  params.floor = take_number_option(args, "--floor", params.floor);
+  params.min_texture = take_number_option(args, "--min-texture", params.min_texture);
+  params.replace = take_flag(args, "--replace");
+  params.replace_score = take_number_option(args, "--replace-score", params.replace_score);
+  reject_unknown_options(args);
+  if (args.size() != 1) throw InputError("projector check", "expected one SCENE folder");
+  if (stereo_dir.empty()) throw InputError("option --stereo", "is required");
+  if (mask_png.empty()) throw InputError("option --mask", "is required");
+  if (params.window < 3 || params.window % 2 == 0 || params.window > 51) {
+    throw InputError("option --window", "must be odd, 3..51");
+  }
+  if (!(params.range > 2.0 && params.range <= 64.0)) throw InputError("option --range", "must be in (2, 64] px");
+  if (!(params.margin > 0.0 && params.margin <= 2.0)) throw InputError("option --margin", "must be in (0, 2]");
+  if (!(params.floor >= -1.0 && params.floor <= 1.0)) throw InputError("option --floor", "must be in [-1, 1]");
+  if (!(params.replace_score >= -1.0 && params.replace_score <= 1.0)) {
+    throw InputError("option --replace-score", "must be in [-1, 1]");
+  }
+  check_output_file(mask_png);
+  if (!out.empty()) check_output_file(out);
+
+  const SceneInputs scene = read_scene(args[0], stereo_dir, false);
+  const MiddleburyCalib with_projector = read_projector(args[0], projector_file, scene.calib);
+  const cv::Mat pattern = load_pattern(*with_projector.projector);
+  const ProjectorCheckResult result =
+      check_with_projector(scene.left, scene.disparity, scene.calib, *with_projector.projector, pattern, params);
+  write_image(mask_png, result.flagged);
+  if (!out.empty()) write_pfm(out, result.disparity);
+  std::printf("%s: %d pixels checked, %d flagged (%.1f %%), %d replaced\n", scene.name.c_str(), result.checked,
+              result.flagged_count, result.checked ? 100.0 * result.flagged_count / result.checked : 0.0,
+              result.replaced);
   return 0;
 }
 
@@ -201,8 +270,9 @@ int run_projector_command(std::vector<std::string> args) {
   const std::string mode = args.front();
   args.erase(args.begin());
   if (mode == "decode") return run_decode(args);
+  if (mode == "check") return run_check(args);
   if (mode == "calibrate") return run_calibrate(args);
-  throw InputError("projector", "unknown mode '" + mode + "' (decode or calibrate)");
+  throw InputError("projector", "unknown mode '" + mode + "' (decode, check or calibrate)");
 }
 
 }  // namespace flexsight

@@ -62,8 +62,28 @@ std::vector<std::vector<int>> slant_offsets(int radius, bool slanted, double tx_
   return all;
 }
 
-// ZNCC of the left window (zero mean, unit norm: `left`) against the view's samples
-// at column j + offsets on rows v - radius .. v + radius; -1 where it leaves the view.
+}  // namespace
+
+bool normalised_window(const cv::Mat& channel, int u, int v, int radius, double min_texture,
+                       std::vector<float>& left) {
+  left.clear();
+  if (u - radius < 0 || v - radius < 0 || u + radius >= channel.cols || v + radius >= channel.rows) return false;
+  double mean = 0;
+  for (int dv = -radius; dv <= radius; ++dv) {
+    for (int du = -radius; du <= radius; ++du) left.push_back(channel.at<float>(v + dv, u + du));
+  }
+  for (float x : left) mean += x;
+  mean /= double(left.size());
+  double norm = 0;
+  for (float& x : left) {
+    x -= float(mean);
+    norm += double(x) * x;
+  }
+  if (std::sqrt(norm / double(left.size())) < min_texture) return false;
+  for (float& x : left) x /= float(std::sqrt(norm));
+  return true;
+}
+
 double window_score(const std::vector<float>& left, const VirtualView& view, int v, int j, int radius,
                     const std::vector<int>& offsets) {
   double sum = 0, sum_sq = 0, cross = 0;
@@ -82,31 +102,15 @@ double window_score(const std::vector<float>& left, const VirtualView& view, int
   return cross / std::sqrt(var);  // the left window has zero mean and unit norm
 }
 
-}  // namespace
-
 PixelDecode decode_pixel(const cv::Mat& channel, int u, int v, const LeftCamera& camera,
                          const ProjectorCalib& projector, const VirtualView& view,
                          const ProjectorDecodeParams& params, const StereoVisibility* visibility) {
   PixelDecode result;
   result.disparity = std::numeric_limits<float>::quiet_NaN();
   const int r = params.window / 2;
-  if (u - r < 0 || v - r < 0 || u + r >= channel.cols || v + r >= channel.rows) return result;
-
   std::vector<float> left;
   left.reserve(std::size_t(params.window * params.window));
-  double mean = 0;
-  for (int dv = -r; dv <= r; ++dv) {
-    for (int du = -r; du <= r; ++du) left.push_back(channel.at<float>(v + dv, u + du));
-  }
-  for (float x : left) mean += x;
-  mean /= double(left.size());
-  double norm = 0;
-  for (float& x : left) {
-    x -= float(mean);
-    norm += double(x) * x;
-  }
-  if (std::sqrt(norm / double(left.size())) < params.min_texture) return result;
-  for (float& x : left) x /= float(std::sqrt(norm));
+  if (!normalised_window(channel, u, v, r, params.min_texture, left)) return result;
 
   // Candidates one view sample apart: a disparity step of B / (2 |tx|).
   const double step = camera.baseline_mm / (2.0 * std::abs(projector.t[0]));

@@ -8,6 +8,7 @@
 // when it is distinct: its score at least min_score and above every candidate outside
 // its peak by at least min_margin. Otherwise the pixel keeps what it had.
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "host/projector/projector_view.h"
 #include "host/projector/projector_visibility.h"
@@ -38,6 +39,16 @@ cv::Mat laser_channel(const cv::Mat& rgb8);
 // raw left disparity not finite, or the raw right disparity at x - d disagreeing by more
 // than `tolerance`.
 cv::Mat left_right_failures(const cv::Mat& raw_left, const cv::Mat& raw_right, float tolerance);
+
+// The left window of `channel` around (u, v), zero mean and unit norm, in `left` (row
+// by row); false when it leaves the image or its spread is below min_texture.
+bool normalised_window(const cv::Mat& channel, int u, int v, int radius, double min_texture,
+                       std::vector<float>& left);
+
+// ZNCC of a normalised_window against the view's samples at column j + offsets (one per
+// window pixel) on rows v - radius .. v + radius; -1 where it leaves the view.
+double window_score(const std::vector<float>& left, const VirtualView& view, int v, int j, int radius,
+                    const std::vector<int>& offsets);
 
 struct PixelDecode {
   float disparity = 0;  // sub-pixel, NaN when none

@@ -3,16 +3,19 @@
 // camera-projector rows finds the true disparity at pixels both cameras see, and a
 // projector put in the wrong place does not; the pattern estimated from the bin's true
 // disparities agrees with the bin's pattern file, and the near/far check prefers the true
-// pose; `flexsight projector decode` refuses a calibration without a projector.
+// pose; the check flags a band of pixels shifted 5 px off the truth and few of the true
+// ones; `flexsight projector decode` refuses a calibration without a projector.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "host/io/calibration.h"
 #include "host/io/image_io.h"
 #include "host/io/pfm.h"
 #include "host/projector/projector_calibrate.h"
+#include "host/projector/projector_check.h"
 #include "host/projector/projector_decode.h"
 #include "host/projector/projector_visibility.h"
 #include "tests/cli/cli_test_support.h"
@@ -125,6 +128,49 @@ TEST_F(ProjectorBin, CoverageGrowsWithTheScenesPooled) {
   EXPECT_GT(one, 0.2);
   EXPECT_LT(one, 1.0);
   EXPECT_GT(both, one);
+}
+
+// The true disparity with rows 200..279 shifted by 5 px: the check flags most of the
+// shifted band and few of the rest, and --replace gives most flagged pixels back a value
+// within 2 px of the truth.
+TEST_F(ProjectorBin, CheckFlagsABandShiftedOffTheTruth) {
+  const MiddleburyCalib calib = read_middlebury_calib((bin() / "calib.txt").string());
+  ASSERT_TRUE(calib.projector.has_value());
+  const cv::Mat left = load_rgb8((bin() / "im0.png").string());
+  const cv::Mat truth = read_pfm((bin() / "disp0GT.pfm").string());
+  const cv::Mat nocc = load_rgb8((bin() / "mask0nocc.png").string());
+  cv::Mat disparity(truth.size(), CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
+  for (int y = 0; y < truth.rows; ++y) {
+    for (int x = 0; x < truth.cols; ++x) {
+      if (nocc.at<cv::Vec3b>(y, x)[0] != 255 || !(std::abs(truth.at<float>(y, x)) < 1e6f)) continue;
+      disparity.at<float>(y, x) = truth.at<float>(y, x) + ((y >= 200 && y < 280) ? 5.0f : 0.0f);
+    }
+  }
+  ProjectorCheckParams params;
+  params.replace = true;
+  const ProjectorCheckResult result =
+      check_with_projector(left, disparity, calib, *calib.projector, load_pattern(*calib.projector), params);
+  int band = 0, band_flagged = 0, rest = 0, rest_flagged = 0, replaced_good = 0, replaced = 0;
+  for (int y = 0; y < truth.rows; ++y) {
+    for (int x = 0; x < truth.cols; ++x) {
+      if (!std::isfinite(disparity.at<float>(y, x))) continue;
+      const bool flagged = result.flagged.at<std::uint8_t>(y, x) != 0;
+      const bool shifted = y >= 200 && y < 280;
+      (shifted ? band : rest) += 1;
+      (shifted ? band_flagged : rest_flagged) += flagged;
+      const float out = result.disparity.at<float>(y, x);
+      if (shifted && flagged && std::isfinite(out)) {
+        ++replaced;
+        replaced_good += std::abs(out - truth.at<float>(y, x)) <= 2.0f;
+      }
+    }
+  }
+  ASSERT_GT(band, 10000);
+  ASSERT_GT(result.checked, rest / 2);
+  EXPECT_GT(band_flagged, band / 2) << band_flagged << " of " << band;
+  EXPECT_LT(rest_flagged, rest / 10) << rest_flagged << " of " << rest;
+  EXPECT_GT(replaced, band_flagged / 2);
+  EXPECT_GT(replaced_good, replaced * 8 / 10) << replaced_good << " of " << replaced;
 }
 
 // A flat surface at disparity 40 that both views agree on: a candidate nearer the cameras
