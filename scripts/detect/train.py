@@ -49,11 +49,20 @@ MIN_NEGATIVES = 8  # per image, so that images without parts still teach backgro
 # ----------------------------------------------------------------------------------------------
 # Data
 
+IGNORED = -1  # label of anchors on a crowd region (a part mostly hidden or cut by a tile)
+
+
 def match_all(data: CocoSet, anchors: np.ndarray):
+    """Labels and box targets per anchor; background anchors overlapping a crowd region at
+    IoU >= 0.5 are IGNORED, so that half a part teaches neither part nor background."""
     labels = np.zeros((len(data), len(anchors)), np.int64)
     targets = np.zeros((len(data), len(anchors), 4), np.float32)
+    corners = anc.corners(anchors)
     for i, (boxes, cls) in enumerate(data.gt):
         labels[i], targets[i] = anc.match(boxes, cls, anchors)
+        if len(data.crowds[i]):
+            on_crowd = anc.iou(corners, data.crowds[i]).max(1) >= 0.5
+            labels[i][on_crowd & (labels[i] == 0)] = IGNORED
     return torch.from_numpy(labels), torch.from_numpy(targets)
 
 
@@ -67,17 +76,34 @@ def ssd_loss(boxes, logits, labels, targets):
     n = num_pos.sum().clamp(min=1).float()
     loc = F.smooth_l1_loss(boxes[pos], targets[pos], reduction="sum", beta=1.0) / n
     ce = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
-                         reduction="none").view(labels.shape)
-    neg_loss = ce.detach().masked_fill(pos, -1.0)
+                         reduction="none", ignore_index=IGNORED).view(labels.shape)
+    neg_loss = ce.detach().masked_fill(pos | (labels == IGNORED), -1.0)
     rank = neg_loss.argsort(1, descending=True).argsort(1)
     num_neg = (NEG_POS_RATIO * num_pos).clamp(min=MIN_NEGATIVES, max=labels.shape[1] - 1)
-    neg = rank < num_neg[:, None]
+    neg = (rank < num_neg[:, None]) & (labels != IGNORED)
     cls = (ce * (pos | neg)).sum() / n
     return loc, cls
 
 
 # ----------------------------------------------------------------------------------------------
 # Training
+
+def load_onnx_weights(model, path: Path) -> None:
+    """Every parameter from an ONNX file export_onnx wrote (its initialisers keep the PyTorch
+    names); the model must have the same layers and classes."""
+    import onnx
+    from onnx import numpy_helper
+    weights = {i.name: numpy_helper.to_array(i) for i in onnx.load(str(path)).graph.initializer}
+    state = model.state_dict()
+    missing = [k for k in state if k not in weights]
+    if missing:
+        raise ValueError("%s: no weights for %s (not a model of this layout)" % (path, missing[0]))
+    for k, v in state.items():
+        if tuple(weights[k].shape) != tuple(v.shape):
+            raise ValueError("%s: %s has shape %s, the model %s" % (path, k, weights[k].shape, tuple(v.shape)))
+        state[k] = torch.from_numpy(weights[k].copy())
+    model.load_state_dict(state)
+
 
 def seed_everything(seed: int) -> None:
     random.seed(seed)
@@ -242,6 +268,12 @@ def main(argv=None) -> int:
                     help="train on the first N images of the training split only (0: all); the"
                          " validation split and the cache stay those of the whole data set, so"
                          " data-size experiments share one cache")
+    ap.add_argument("--sources", default="",
+                    help="train and validate only on the images whose `source` (detect.mix_sets)"
+                         " is in this comma-separated list; the cache stays the whole set's")
+    ap.add_argument("--init-onnx", type=Path,
+                    help="start from the weights of a model this script exported (e.g."
+                         " models/tless-ssd/model.onnx) instead of the TFLite models: fine-tuning")
     ap.add_argument("--test", type=Path,
                     help="held-out data set folder (coco_instances.json): AP@0.5 per class at the end")
     ap.add_argument("--ap-images", type=int, default=500,
@@ -266,11 +298,22 @@ def main(argv=None) -> int:
     print("data: %d images, %d boxes, %d categories from %s"
           % (len(data), sum(len(g[1]) for g in data.gt), len(data.categories), coco_path))
     model = build_model(len(data.categories), args.backbone, args.class_heads)
+    if args.init_onnx:
+        load_onnx_weights(model, args.init_onnx)
+        print("weights: from %s" % args.init_onnx)
     model = model.to(device=args.device, memory_format=CL)
     anchors = anc.generate()
     labels, targets = match_all(data, anchors)
     print("matching: %.1f positive anchors per image" % (labels > 0).sum(1).float().mean())
     train_idx, val_idx = split(len(data), args.val_fraction, args.seed)
+    if args.sources:
+        wanted = set(args.sources.split(","))
+        keep = np.array([s in wanted for s in data.sources])
+        if not keep.any():
+            print("error: --sources %s: no image of %s has one of them" % (args.sources, coco_path),
+                  file=sys.stderr)
+            return 2
+        train_idx, val_idx = train_idx[keep[train_idx]], val_idx[keep[val_idx]]
     if args.train_limit:
         train_idx = train_idx[:args.train_limit]
     print("split: %d training, %d validation images" % (len(train_idx), len(val_idx)))
