@@ -103,7 +103,7 @@ class Bin:
         return self._masks
 
     def annotations(self, rect):
-        """(category, [x, y, w, h] in the rect, share of the whole part inside, pixels) per part
+        """(category, [x, y, w, h] in the rect, share of the whole part inside) per part
         with visible pixels in rect = (x, y, w, h)."""
         x0, y0, w, h = rect
         out = []

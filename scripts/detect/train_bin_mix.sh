@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Fine-tunes the shipped detector on mixes of full-synthetic images and bin views (whole and
+# in pick's tiles), one feature cache for all mixes, and scores each on the development bins.
+#
+#   scripts/detect/train_bin_mix.sh RUN_DIR [MIX ...]
+#
+# MIX is NAME=SOURCES (comma-separated sources of the mixed set: full, bins500, bins501);
+# default: full=full full_bins=full,bins500,bins501 bins=bins500,bins501. Every mix trains for
+# about the same number of image steps (STEPS, default 12000 images; epochs = STEPS / the mix's
+# training images, rounded), seed 1, from models/tless-ssd/model.onnx. Data (made when missing,
+# under RUN_DIR): 4000 `synth full` images at 300x300, seed 21, the 250 training backgrounds;
+# bins of `synth bin` seeds 500 (16 bins, defaults), 501 (16, --vary all) and 502 (8, --vary
+# all --pile dense), never used by an evaluation set, cut by detect.bin_tiles into the whole
+# passive left view and tiles of 256 and 336 px. PYTHON (default /usr/bin/python3) trains.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+run=$1
+shift
+mixes=("$@")
+[ ${#mixes[@]} -gt 0 ] || mixes=(full=full full_bins=full,bins500,bins501 bins=bins500,bins501)
+python=${PYTHON:-/usr/bin/python3}
+steps=${STEPS:-12000}
+backgrounds=${FLEXSIGHT_DETECTION_DATA:-../shared/detection}/backgrounds
+mkdir -p "$run"
+run=$(cd "$run" && pwd)
+
+scripts/detect/split_backgrounds.sh "$backgrounds" "$run/backgrounds"
+[ -f "$run/full21/coco_instances.json" ] || build/flexsight synth full --count 4000 --seed 21 \
+  --no-depth --no-masks --backgrounds "$run/backgrounds/train" -o "$run/full21"
+[ -d "$run/bins500" ] || build/flexsight synth bin --count 16 --seed 500 -o "$run/bins500"
+[ -d "$run/bins501" ] || build/flexsight synth bin --count 16 --seed 501 --vary all -o "$run/bins501"
+[ -d "$run/bins502" ] || build/flexsight synth bin --count 8 --seed 502 --vary all --pile dense \
+  -o "$run/bins502"
+cd scripts
+[ -d "$run/tiles500" ] || "$python" -m detect.bin_tiles "$run/bins500" -o "$run/tiles500" --tile 256 336
+[ -d "$run/tiles501" ] || "$python" -m detect.bin_tiles "$run/bins501" "$run/bins502" \
+  -o "$run/tiles501" --tile 256 336
+[ -d "$run/mix" ] || "$python" -m detect.mix_sets -o "$run/mix" full="$run/full21" \
+  bins500="$run/tiles500" bins501="$run/tiles501"
+
+models=()
+for mix in "${mixes[@]}"; do
+  name=${mix%%=*} sources=${mix#*=}
+  images=$("$python" -c "import json,sys; s=set(sys.argv[2].split(',')); \
+print(sum(im['source'] in s for im in json.load(open(sys.argv[1]))['images']))" \
+    "$run/mix/coco_instances.json" "$sources")
+  epochs=$(( (steps * 10 / 9 + images / 2) / images ))  # 90 % of the images train
+  [ "$epochs" -ge 1 ] || epochs=1
+  if [ ! -f "$run/$name/model.onnx" ]; then
+    "$python" -m detect.train --data "$run/mix" --cache "$run/features" --out "$run/$name" \
+      --sources "$sources" --init-onnx ../models/tless-ssd/model.onnx --backbone oidv4 \
+      --tune-from 13 --backbone-lr-factor 0.3 --lr 3e-4 --epochs "$epochs" --ap-images 200 --seed 1
+  fi
+  models+=(--model "$name=$run/$name/model.onnx")
+done
+"$python" -m detect.mix_eval --out "$run/eval" --model shipped=../models/tless-ssd/model.onnx \
+  "${models[@]}" --set bins_dev="${DEV_BINS:-/work/data/bins_dev}@256" \
+  --set synth640="${DEV_SYNTH:-/work/data/deteval/synth640_100}@0" | tee "$run/dev_table.md"
