@@ -7,7 +7,7 @@ any score by part size (sqrt of the box area).
                                [--min-visible 0.5] [--flexsight build/flexsight]   # from scripts/
 
 Each (model, set) runs `flexsight eval-det DATASET --model M.onnx --tile TILE --out
-DIR/NAME_SET` once; a report.json already there is reused, so sets can be added later.
+DIR/NAME_SET` once (--min-visible for BOP folders only); a report.json already there is reused, so sets can be added later.
 """
 from __future__ import annotations
 
@@ -29,10 +29,11 @@ def run(args, model: str, onnx: str, set_name: str, dataset: str) -> dict:
     path, _, tile = dataset.partition("@")
     out = args.out / ("%s_%s" % (model, set_name))
     if not (out / "report.json").is_file():
+        bop = not (Path(path) / "coco_instances.json").is_file() and not path.endswith(".json")
+        visible = ["--min-visible", str(args.min_visible)] if bop else []  # COCO sets have none
         subprocess.run([str(args.flexsight), "eval-det", path, "--model", onnx, "--tile", tile or "0",
-                        "--min-visible", str(args.min_visible), "--out", str(out), "--overwrite",
-                        "--quiet", "--montage", "0", "--threads", str(args.threads)],
-                       check=True, stdout=subprocess.DEVNULL)
+                        *visible, "--out", str(out), "--overwrite", "--quiet", "--montage", "0",
+                        "--threads", str(args.threads)], check=True, stdout=subprocess.DEVNULL)
     return json.loads((out / "report.json").read_text())
 
 

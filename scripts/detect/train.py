@@ -249,6 +249,10 @@ def main(argv=None) -> int:
     ap.add_argument("--max-minutes", type=float, default=0,
                     help="stop after the epoch that passes this long (0: no limit); the number of"
                          " epochs then depends on the machine: --stop-epoch repeats a run exactly")
+    ap.add_argument("--max-images", type=int, default=0,
+                    help="train on this many images in all, stopping within an epoch (the"
+                         " learning-rate schedule ends there; 0: --epochs whole epochs): the same"
+                         " budget for training mixes of different sizes")
     ap.add_argument("--stop-epoch", type=int, default=0,
                     help="stop after this epoch, the learning-rate schedule still that of --epochs"
                          " (0: run them all)")
@@ -342,6 +346,9 @@ def main(argv=None) -> int:
     opt = torch.optim.AdamW(params, lr=args.lr, weight_decay=args.weight_decay)
     steps_per_epoch = max(1, math.ceil(len(train_idx) / args.batch_size))
     total = steps_per_epoch * args.epochs
+    if args.max_images:
+        total = max(1, math.ceil(args.max_images / args.batch_size))
+        args.epochs = math.ceil(total / steps_per_epoch)
     warmup = max(1, min(total // 20, 200))
     base = [g["lr"] for g in opt.param_groups]
 
@@ -369,6 +376,8 @@ def main(argv=None) -> int:
         perm = rng.permutation(train_idx)
         sums, seen, t_epoch = np.zeros(2), 0, time.time()
         for s in range(0, len(perm), args.batch_size):
+            if step >= total:  # --max-images reached within the epoch
+                break
             b = np.sort(perm[s:s + args.batch_size])  # sorted: memmap reads in file order
             f = min(1.0, (step + 1) / warmup) * 0.5 * (1 + math.cos(math.pi * step / total))
             for g, lr in zip(opt.param_groups, base):

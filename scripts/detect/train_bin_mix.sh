@@ -5,9 +5,9 @@
 #   scripts/detect/train_bin_mix.sh RUN_DIR [MIX ...]
 #
 # MIX is NAME=SOURCES (comma-separated sources of the mixed set: full, bins500, bins501);
-# default: full=full full_bins=full,bins500,bins501 bins=bins500,bins501. Every mix trains for
-# about the same number of image steps (STEPS, default 12000 images; epochs = STEPS / the mix's
-# training images, rounded), seed 1, from models/tless-ssd/model.onnx. Data (made when missing,
+# default: full_bins=full,bins500,bins501 bins=bins500,bins501 full=full. Every mix trains on
+# the same number of images (STEPS, default 3000: detect.train --max-images, the learning rate's
+# cosine ending there), seed 1, from models/tless-ssd/model.onnx. Data (made when missing,
 # under RUN_DIR): 4000 `synth full` images at 300x300, seed 21, the 250 training backgrounds;
 # bins of `synth bin` seeds 500 (16 bins, defaults), 501 (16, --vary all) and 502 (8, --vary
 # all --pile dense), never used by an evaluation set, cut by detect.bin_tiles into the whole
@@ -17,9 +17,9 @@ cd "$(dirname "$0")/../.."
 run=$1
 shift
 mixes=("$@")
-[ ${#mixes[@]} -gt 0 ] || mixes=(full=full full_bins=full,bins500,bins501 bins=bins500,bins501)
+[ ${#mixes[@]} -gt 0 ] || mixes=(full_bins=full,bins500,bins501 bins=bins500,bins501 full=full)
 python=${PYTHON:-/usr/bin/python3}
-steps=${STEPS:-12000}
+steps=${STEPS:-3000}
 backgrounds=${FLEXSIGHT_DETECTION_DATA:-../shared/detection}/backgrounds
 mkdir -p "$run"
 run=$(cd "$run" && pwd)
@@ -41,15 +41,10 @@ cd scripts
 models=()
 for mix in "${mixes[@]}"; do
   name=${mix%%=*} sources=${mix#*=}
-  images=$("$python" -c "import json,sys; s=set(sys.argv[2].split(',')); \
-print(sum(im['source'] in s for im in json.load(open(sys.argv[1]))['images']))" \
-    "$run/mix/coco_instances.json" "$sources")
-  epochs=$(( (steps * 10 / 9 + images / 2) / images ))  # 90 % of the images train
-  [ "$epochs" -ge 1 ] || epochs=1
   if [ ! -f "$run/$name/model.onnx" ]; then
     "$python" -m detect.train --data "$run/mix" --cache "$run/features" --out "$run/$name" \
       --sources "$sources" --init-onnx ../models/tless-ssd/model.onnx --backbone oidv4 \
-      --tune-from 13 --backbone-lr-factor 0.3 --lr 3e-4 --epochs "$epochs" --ap-images 200 --seed 1
+      --tune-from 13 --backbone-lr-factor 0.3 --lr 3e-4 --max-images "$steps" --ap-images 100 --seed 1
   fi
   models+=(--model "$name=$run/$name/model.onnx")
 done
