@@ -33,7 +33,8 @@ def main(argv=None) -> int:
         rows = list(csv.DictReader(log.open()))
         summary = json.loads((run / m / "summary.json").read_text())
         per_epoch = summary["train_images"]
-        x = [int(r["epoch"]) * per_epoch for r in rows]
+        budget = int(summary["settings"].get("max_images", "0")) or 1 << 62  # --max-images stops within an epoch
+        x = [min(int(r["epoch"]) * per_epoch, budget) for r in rows]
         ax.plot(x, [float(r["train_loss"]) for r in rows], "o-", color="C%d" % k, label=m + " train")
         ax.plot(x, [float(r["val_loss"]) for r in rows], "s--", color="C%d" % k, label=m + " validation")
     ax.set_xlabel("images trained")
