@@ -40,7 +40,7 @@ from .coco_set import CocoSet
 from .detect_eval import average_precision_50, decode_detections
 from .export_onnx import check_with_opencv, export
 from .feature_cache import CL, FEATURE_RATE, cache_features, cache_key
-from .ssd_model import FEATURE_BLOCK, build_model
+from .ssd_model import FEATURE_BLOCK, build_model, load_onnx_weights
 
 NEG_POS_RATIO = 3
 MIN_NEGATIVES = 8  # per image, so that images without parts still teach background
@@ -87,23 +87,6 @@ def ssd_loss(boxes, logits, labels, targets):
 
 # ----------------------------------------------------------------------------------------------
 # Training
-
-def load_onnx_weights(model, path: Path) -> None:
-    """Every parameter from an ONNX file export_onnx wrote (its initialisers keep the PyTorch
-    names); the model must have the same layers and classes."""
-    import onnx
-    from onnx import numpy_helper
-    weights = {i.name: numpy_helper.to_array(i) for i in onnx.load(str(path)).graph.initializer}
-    state = model.state_dict()
-    missing = [k for k in state if k not in weights]
-    if missing:
-        raise ValueError("%s: no weights for %s (not a model of this layout)" % (path, missing[0]))
-    for k, v in state.items():
-        if tuple(weights[k].shape) != tuple(v.shape):
-            raise ValueError("%s: %s has shape %s, the model %s" % (path, k, weights[k].shape, tuple(v.shape)))
-        state[k] = torch.from_numpy(weights[k].copy())
-    model.load_state_dict(state)
-
 
 def seed_everything(seed: int) -> None:
     random.seed(seed)
