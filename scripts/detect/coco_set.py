@@ -11,6 +11,12 @@ import torch
 from PIL import Image
 
 
+def normalised(boxes, w: float, h: float) -> np.ndarray:
+    """[x, y, w, h] pixel boxes -> [N, 4] corners (ymin, xmin, ymax, xmax) over the image size."""
+    return np.array([[y / h, x / w, (y + bh) / h, (x + bw) / w] for x, y, bw, bh in boxes],
+                    np.float32).reshape(-1, 4)
+
+
 class CocoSet:
     """Images and boxes of a COCO instances file; boxes normalised, class 1..C by sorted id."""
 
@@ -25,17 +31,22 @@ class CocoSet:
             kept = {im["id"] for im in self.images}
             coco["annotations"] = [a for a in coco["annotations"] if a["image_id"] in kept]
         boxes = {im["id"]: [] for im in self.images}
+        crowds = {im["id"]: [] for im in self.images}
         for a in coco["annotations"]:
-            if a.get("iscrowd", 0) or a["bbox"][2] <= 0 or a["bbox"][3] <= 0:
+            if a["bbox"][2] <= 0 or a["bbox"][3] <= 0:
                 continue
-            boxes[a["image_id"]].append((a["bbox"], index[a["category_id"]]))
-        self.gt = []
+            if a.get("iscrowd", 0):
+                crowds[a["image_id"]].append(a["bbox"])
+            else:
+                boxes[a["image_id"]].append((a["bbox"], index[a["category_id"]]))
+        self.gt, self.crowds = [], []  # crowd regions: neither part nor background (detect.train)
         for im in self.images:
             w, h = float(im["width"]), float(im["height"])
-            c = np.array([[y / h, x / w, (y + bh) / h, (x + bw) / w]
-                          for (x, y, bw, bh), _ in boxes[im["id"]]], np.float32).reshape(-1, 4)
+            c = normalised([b for b, _ in boxes[im["id"]]], w, h)
             l = np.array([k for _, k in boxes[im["id"]]], np.int64)
             self.gt.append((c, l))
+            self.crowds.append(normalised(crowds[im["id"]], w, h))
+        self.sources = [im.get("source", "") for im in self.images]
 
     def __len__(self):
         return len(self.images)

@@ -337,6 +337,23 @@ def build_model(num_classes: int = 23, backbone: str = "imagenet",
     return model
 
 
+def load_onnx_weights(model: SSDMobileNetV2, path) -> None:
+    """Every parameter from an ONNX file export_onnx wrote (its initialisers keep the PyTorch
+    names); the model must have the same layers and classes."""
+    import onnx
+    from onnx import numpy_helper
+    weights = {i.name: numpy_helper.to_array(i) for i in onnx.load(str(path)).graph.initializer}
+    state = model.state_dict()
+    missing = [k for k in state if k not in weights]
+    if missing:
+        raise ValueError("%s: no weights for %s (not a model of this layout)" % (path, missing[0]))
+    for k, v in state.items():
+        if tuple(weights[k].shape) != tuple(v.shape):
+            raise ValueError("%s: %s has shape %s, the model %s" % (path, k, weights[k].shape, tuple(v.shape)))
+        state[k] = torch.from_numpy(weights[k].copy())
+    model.load_state_dict(state)
+
+
 def preprocess(rgb: np.ndarray, size: int = 300) -> torch.Tensor:
     """HxWx3 uint8 RGB -> [1, 3, size, size] float in [-1, 1] (bilinear resize, no crop), the
     input convention of the TF OD API MobileNet models: x / 127.5 - 1."""

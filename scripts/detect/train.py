@@ -40,7 +40,7 @@ from .coco_set import CocoSet
 from .detect_eval import average_precision_50, decode_detections
 from .export_onnx import check_with_opencv, export
 from .feature_cache import CL, FEATURE_RATE, cache_features, cache_key
-from .ssd_model import FEATURE_BLOCK, build_model
+from .ssd_model import FEATURE_BLOCK, build_model, load_onnx_weights
 
 NEG_POS_RATIO = 3
 MIN_NEGATIVES = 8  # per image, so that images without parts still teach background
@@ -49,11 +49,20 @@ MIN_NEGATIVES = 8  # per image, so that images without parts still teach backgro
 # ----------------------------------------------------------------------------------------------
 # Data
 
+IGNORED = -1  # label of anchors on a crowd region (a part mostly hidden or cut by a tile)
+
+
 def match_all(data: CocoSet, anchors: np.ndarray):
+    """Labels and box targets per anchor; background anchors overlapping a crowd region at
+    IoU >= 0.5 are IGNORED, so that half a part teaches neither part nor background."""
     labels = np.zeros((len(data), len(anchors)), np.int64)
     targets = np.zeros((len(data), len(anchors), 4), np.float32)
+    corners = anc.corners(anchors)
     for i, (boxes, cls) in enumerate(data.gt):
         labels[i], targets[i] = anc.match(boxes, cls, anchors)
+        if len(data.crowds[i]):
+            on_crowd = anc.iou(corners, data.crowds[i]).max(1) >= 0.5
+            labels[i][on_crowd & (labels[i] == 0)] = IGNORED
     return torch.from_numpy(labels), torch.from_numpy(targets)
 
 
@@ -67,11 +76,11 @@ def ssd_loss(boxes, logits, labels, targets):
     n = num_pos.sum().clamp(min=1).float()
     loc = F.smooth_l1_loss(boxes[pos], targets[pos], reduction="sum", beta=1.0) / n
     ce = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
-                         reduction="none").view(labels.shape)
-    neg_loss = ce.detach().masked_fill(pos, -1.0)
+                         reduction="none", ignore_index=IGNORED).view(labels.shape)
+    neg_loss = ce.detach().masked_fill(pos | (labels == IGNORED), -1.0)
     rank = neg_loss.argsort(1, descending=True).argsort(1)
     num_neg = (NEG_POS_RATIO * num_pos).clamp(min=MIN_NEGATIVES, max=labels.shape[1] - 1)
-    neg = rank < num_neg[:, None]
+    neg = (rank < num_neg[:, None]) & (labels != IGNORED)
     cls = (ce * (pos | neg)).sum() / n
     return loc, cls
 
@@ -223,6 +232,10 @@ def main(argv=None) -> int:
     ap.add_argument("--max-minutes", type=float, default=0,
                     help="stop after the epoch that passes this long (0: no limit); the number of"
                          " epochs then depends on the machine: --stop-epoch repeats a run exactly")
+    ap.add_argument("--max-images", type=int, default=0,
+                    help="train on this many images in all, stopping within an epoch (the"
+                         " learning-rate schedule ends there; 0: --epochs whole epochs): the same"
+                         " budget for training mixes of different sizes")
     ap.add_argument("--stop-epoch", type=int, default=0,
                     help="stop after this epoch, the learning-rate schedule still that of --epochs"
                          " (0: run them all)")
@@ -242,6 +255,12 @@ def main(argv=None) -> int:
                     help="train on the first N images of the training split only (0: all); the"
                          " validation split and the cache stay those of the whole data set, so"
                          " data-size experiments share one cache")
+    ap.add_argument("--sources", default="",
+                    help="train and validate only on the images whose `source` (detect.mix_sets)"
+                         " is in this comma-separated list; the cache stays the whole set's")
+    ap.add_argument("--init-onnx", type=Path,
+                    help="start from the weights of a model this script exported (e.g."
+                         " models/tless-ssd/model.onnx) instead of the TFLite models: fine-tuning")
     ap.add_argument("--test", type=Path,
                     help="held-out data set folder (coco_instances.json): AP@0.5 per class at the end")
     ap.add_argument("--ap-images", type=int, default=500,
@@ -266,11 +285,22 @@ def main(argv=None) -> int:
     print("data: %d images, %d boxes, %d categories from %s"
           % (len(data), sum(len(g[1]) for g in data.gt), len(data.categories), coco_path))
     model = build_model(len(data.categories), args.backbone, args.class_heads)
+    if args.init_onnx:
+        load_onnx_weights(model, args.init_onnx)
+        print("weights: from %s" % args.init_onnx)
     model = model.to(device=args.device, memory_format=CL)
     anchors = anc.generate()
     labels, targets = match_all(data, anchors)
     print("matching: %.1f positive anchors per image" % (labels > 0).sum(1).float().mean())
     train_idx, val_idx = split(len(data), args.val_fraction, args.seed)
+    if args.sources:
+        wanted = set(args.sources.split(","))
+        keep = np.array([s in wanted for s in data.sources])
+        if not keep.any():
+            print("error: --sources %s: no image of %s has one of them" % (args.sources, coco_path),
+                  file=sys.stderr)
+            return 2
+        train_idx, val_idx = train_idx[keep[train_idx]], val_idx[keep[val_idx]]
     if args.train_limit:
         train_idx = train_idx[:args.train_limit]
     print("split: %d training, %d validation images" % (len(train_idx), len(val_idx)))
@@ -299,6 +329,9 @@ def main(argv=None) -> int:
     opt = torch.optim.AdamW(params, lr=args.lr, weight_decay=args.weight_decay)
     steps_per_epoch = max(1, math.ceil(len(train_idx) / args.batch_size))
     total = steps_per_epoch * args.epochs
+    if args.max_images:
+        total = max(1, math.ceil(args.max_images / args.batch_size))
+        args.epochs = math.ceil(total / steps_per_epoch)
     warmup = max(1, min(total // 20, 200))
     base = [g["lr"] for g in opt.param_groups]
 
@@ -326,6 +359,8 @@ def main(argv=None) -> int:
         perm = rng.permutation(train_idx)
         sums, seen, t_epoch = np.zeros(2), 0, time.time()
         for s in range(0, len(perm), args.batch_size):
+            if step >= total:  # --max-images reached within the epoch
+                break
             b = np.sort(perm[s:s + args.batch_size])  # sorted: memmap reads in file order
             f = min(1.0, (step + 1) / warmup) * 0.5 * (1 + math.cos(math.pi * step / total))
             for g, lr in zip(opt.param_groups, base):

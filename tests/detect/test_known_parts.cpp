@@ -47,6 +47,16 @@ SsdDetectorOptions low_threshold(const KnownParts& parts = {}) {
   return options;
 }
 
+// IoU of two detections' pixel boxes (x0, y0, x1, y1).
+double box_iou(const ObjectDetection& a, const ObjectDetection& b) {
+  const double w = std::min(a.box[2], b.box[2]) - std::max(a.box[0], b.box[0]);
+  const double h = std::min(a.box[3], b.box[3]) - std::max(a.box[1], b.box[1]);
+  if (w <= 0 || h <= 0) return 0.0;
+  const double area_a = double(a.box[2] - a.box[0]) * (a.box[3] - a.box[1]);
+  const double area_b = double(b.box[2] - b.box[0]) * (b.box[3] - b.box[1]);
+  return w * h / (area_a + area_b - w * h);
+}
+
 std::string input_error_of(const std::function<void()>& call) {
   try {
     call();
@@ -89,7 +99,8 @@ TEST(KnownParts, AnIdTheDetectorLacksNamesPartsAndTheModel) {
 
 // The shipped model is softmax: the known classes' boxes only, each scored by the softmax
 // over the background and the known classes at its anchor; that can only raise a score,
-// so every known-class box of the full run is still there.
+// so every known-class box of the full run is still there, at least as high, unless a box
+// of its class that the renormalisation lifted above it now suppresses it (NMS).
 TEST(KnownParts, SoftmaxKeepsExactlyTheKnownClassesRenormalised) {
   const cv::Mat bgr = fixture_scene();
   ASSERT_FALSE(bgr.empty());
@@ -128,7 +139,10 @@ TEST(KnownParts, SoftmaxKeepsExactlyTheKnownClassesRenormalised) {
     const bool kept = std::any_of(found.begin(), found.end(), [&](const ObjectDetection& k) {
       return k.anchor == d.anchor && k.category_id == d.category_id && k.score >= d.score - 1e-6f;
     });
-    EXPECT_TRUE(kept) << "category " << d.category_id << " at anchor " << d.anchor << " score " << d.score;
+    const bool suppressed = std::any_of(found.begin(), found.end(), [&](const ObjectDetection& k) {
+      return k.category_id == d.category_id && k.score >= d.score && box_iou(k, d) > 0.6;
+    });
+    EXPECT_TRUE(kept || suppressed) << "category " << d.category_id << " at anchor " << d.anchor << " score " << d.score;
   }
   // The OpenCL path (where there is one) gives the same detections.
   SsdDetector known_auto(kShippedModel, low_threshold(parts), backend(BackendKind::Auto));
