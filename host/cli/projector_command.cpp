@@ -112,6 +112,10 @@ MiddleburyCalib read_projector(const std::string& folder, const std::string& pro
   return with_projector;
 }
 
+void require_odd_window(int window) {
+  if (window < 3 || window % 2 == 0 || window > 51) throw InputError("option --window", "must be odd, 3..51");
+}
+
 int run_decode(std::vector<std::string>& args) {
   const std::string stereo_dir = take_option(args, "--stereo");
   const std::string out = take_option(args, "-o");
@@ -129,9 +133,7 @@ int run_decode(std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("projector decode", "expected one SCENE folder");
   if (stereo_dir.empty()) throw InputError("option --stereo", "is required");
   if (out.empty()) throw InputError("option -o", "is required");
-  if (params.window < 3 || params.window % 2 == 0 || params.window > 51) {
-    throw InputError("option --window", "must be odd, 3..51");
-  }
+  require_odd_window(params.window);
   check_output_file(out);
   if (!state_png.empty()) check_output_file(state_png);
 
@@ -172,9 +174,7 @@ int run_check(std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("projector check", "expected one SCENE folder");
   if (stereo_dir.empty()) throw InputError("option --stereo", "is required");
   if (mask_png.empty()) throw InputError("option --mask", "is required");
-  if (params.window < 3 || params.window % 2 == 0 || params.window > 51) {
-    throw InputError("option --window", "must be odd, 3..51");
-  }
+  require_odd_window(params.window);
   if (!(params.range > 2.0 && params.range <= 64.0)) throw InputError("option --range", "must be in (2, 64] px");
   if (!(params.margin > 0.0 && params.margin <= 2.0)) throw InputError("option --margin", "must be in (0, 2]");
   if (!(params.floor >= -1.0 && params.floor <= 1.0)) throw InputError("option --floor", "must be in [-1, 1]");
@@ -195,16 +195,6 @@ int run_check(std::vector<std::string>& args) {
               result.flagged_count, result.checked ? 100.0 * result.flagged_count / result.checked : 0.0,
               result.replaced);
   return 0;
-}
-
-// The scene's calib.txt without any proj* lines.
-std::string camera_lines(const std::string& calib_path) {
-  std::ifstream in(calib_path);
-  std::string text;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("proj", 0) != 0) text += line + "\n";
-  }
-  return text;
 }
 
 int run_calibrate(std::vector<std::string>& args) {
@@ -253,7 +243,7 @@ int run_calibrate(std::vector<std::string>& args) {
   fs::create_directories(out);
   write_image((fs::path(out) / "projector_pattern.png").string(), estimate.image8());
   std::ofstream calib((fs::path(out) / "calib.txt").string());
-  calib << camera_lines(middeval3_files(args[0]).calib) << projector_calib_text(projector);
+  calib << calib_text_without_projector(middeval3_files(args[0]).calib) << projector_calib_text(projector);
   if (!calib.flush()) throw InputError(out + "/calib.txt", "cannot be written");
   std::printf("wrote %s/calib.txt and projector_pattern.png from %zu scenes\n", out.c_str(), scenes.size());
   return 0;

@@ -350,6 +350,14 @@ std::string projector_calib_text(const ProjectorCalib& p) {
   return std::string(text) + "projpattern=" + p.pattern + "\n";
 }
 
+std::string calib_text_without_projector(const std::string& path) {
+  std::string text;
+  for (const std::string& line : split_lines(io_detail::read_whole_file(path))) {
+    if (line.rfind("proj", 0) != 0) text += line + "\n";
+  }
+  return text;
+}
+
 KittiCalib read_kitti_calib(const std::string& path) {
   const std::vector<std::string> lines = split_lines(io_detail::read_whole_file(path));
   KittiCalib calib;

@@ -24,6 +24,9 @@ struct ProjectorCalib {
 // The projector's lines as read_middlebury_calib reads them back (\n-terminated).
 std::string projector_calib_text(const ProjectorCalib& projector);
 
+// A calib.txt's text without its projector lines (proj*), e.g. to give it another projector.
+std::string calib_text_without_projector(const std::string& path);
+
 // Middlebury 2014 calib.txt: cam0=[f 0 cx; 0 f cy; 0 0 1], cam1=..., doffs, baseline
 // (mm), width, height, ndisp, and optionally isint, vmin, vmax, dyavg, dymax.
 struct MiddleburyCalib {

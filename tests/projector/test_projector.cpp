@@ -39,6 +39,16 @@ class ProjectorBin : public ::testing::Test {
     delete dir_;
   }
   static fs::path bin() { return *dir_ / "bins" / "bin000"; }
+  // Both bins' left views with their true disparities, every finite pixel confident.
+  static std::vector<CalibrationView> ground_truth_views(const MiddleburyCalib& calib) {
+    std::vector<CalibrationView> views;
+    for (const char* name : {"bin000", "bin001"}) {
+      const fs::path folder = *dir_ / "bins" / name;
+      const cv::Mat truth = read_pfm((folder / "disp0GT.pfm").string());
+      views.push_back(calibration_view(load_rgb8((folder / "im0.png").string()), truth, cv::abs(truth) < 1e6f, calib));
+    }
+    return views;
+  }
   static fs::path* dir_;
 };
 fs::path* ProjectorBin::dir_ = nullptr;
@@ -93,14 +103,7 @@ TEST_F(ProjectorBin, DecodesTheTrueDisparityAndNotWithAWrongPose) {
 
 TEST_F(ProjectorBin, EstimatesThePatternFromKnownDisparities) {
   const MiddleburyCalib calib = read_middlebury_calib((bin() / "calib.txt").string());
-  std::vector<CalibrationView> views;
-  for (const char* name : {"bin000", "bin001"}) {
-    const fs::path folder = *dir_ / "bins" / name;
-    const cv::Mat left = load_rgb8((folder / "im0.png").string());
-    const cv::Mat truth = read_pfm((folder / "disp0GT.pfm").string());
-    cv::Mat finite = cv::abs(truth) < 1e6f;
-    views.push_back(calibration_view(left, truth, finite, calib));
-  }
+  const std::vector<CalibrationView> views = ground_truth_views(calib);
   const ProjectorCalib at_middle = projector_on_baseline(calib, 35.0, 0.0, "");
   const PatternEstimate estimate = estimate_pattern(views, at_middle);
   const cv::Mat pattern = load_pattern(*calib.projector);
@@ -116,12 +119,7 @@ TEST_F(ProjectorBin, EstimatesThePatternFromKnownDisparities) {
 
 TEST_F(ProjectorBin, CoverageGrowsWithTheScenesPooled) {
   const MiddleburyCalib calib = read_middlebury_calib((bin() / "calib.txt").string());
-  std::vector<CalibrationView> views;
-  for (const char* name : {"bin000", "bin001"}) {
-    const fs::path folder = *dir_ / "bins" / name;
-    const cv::Mat truth = read_pfm((folder / "disp0GT.pfm").string());
-    views.push_back(calibration_view(load_rgb8((folder / "im0.png").string()), truth, cv::abs(truth) < 1e6f, calib));
-  }
+  const std::vector<CalibrationView> views = ground_truth_views(calib);
   const ProjectorCalib at_middle = projector_on_baseline(calib, 35.0, 0.0, "");
   const double one = pattern_coverage(estimate_pattern({views[0]}, at_middle), calib, at_middle);
   const double both = pattern_coverage(estimate_pattern(views, at_middle), calib, at_middle);
